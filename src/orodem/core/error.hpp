@@ -1,0 +1,40 @@
+// Error types with the exit status each maps to (SPEC §4, §5). The library
+// throws; only apps/orodem turns an error into an exit status and one line.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace orodem {
+
+enum class ExitCode : int {
+    ok = 0,
+    internal = 1,      // a bug: an unexpected exception
+    config = 2,        // bad config or command line: nothing was run or written
+    unstable = 3,      // the simulation blew up (NaN, overlap, speed, lost particle)
+    io = 4,            // a file could not be read or written
+    interrupted = 130  // SIGINT (SIGTERM gives 143)
+};
+
+/// A refused config or command-line value. what() is the whole one-line message.
+class ConfigError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// A failed read or write; what() names the path and the OS error.
+class IoError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// The physical state became invalid (NaN, overlap explosion, escaped particle).
+class InstabilityError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Throws IoError("<what> '<path>': <strerror(errno)>").
+[[noreturn]] void throw_io_error(const std::string& what, const std::string& path);
+
+}  // namespace orodem

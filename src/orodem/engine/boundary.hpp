@@ -1,0 +1,25 @@
+// Boundary: a self-contained piece of the experiment's boundary conditions
+// (conveyor base, fixed retroside, moving end wall, ...). The step loop calls
+// each hook once per step for the whole system, never per particle, in the
+// order the boundaries were added.
+#pragma once
+
+#include <string_view>
+
+namespace orodem {
+
+class Simulation;
+
+class Boundary {
+public:
+    virtual ~Boundary() = default;
+    virtual std::string_view name() const = 0;
+    /// After the drift (positions at t+dt, velocities at t+dt/2), before forces.
+    virtual void after_drift(Simulation&) {}
+    /// After contact, bond and wall forces are gathered into ParticleStore::force.
+    virtual void add_forces(Simulation&) {}
+    /// After the second half kick (velocities at t+dt).
+    virtual void after_step(Simulation&) {}
+};
+
+}  // namespace orodem

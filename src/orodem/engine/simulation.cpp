@@ -1,0 +1,284 @@
+// Step loop kernels. Determinism argument: every parallel loop writes only
+// slots owned by its iteration (a pair's f, c, ξ; a disc's force, torque, x,
+// v), and every sum runs in an order fixed by the pair list (outgoing pairs in
+// pair order, incoming pairs in pair order, walls in wall order), which the
+// PairBuilder makes independent of the thread count. The only reduction is a
+// max, which is exact.
+#include "orodem/engine/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "orodem/core/hash.hpp"
+#include "orodem/core/parallel.hpp"
+
+namespace orodem {
+
+BondTopology build_bond_topology(const ParticleStore& p) {
+    BondTopology t;
+    const std::size_t n = p.size();
+    // Members of each cluster, in id order.
+    std::int32_t max_cluster = -1;
+    for (std::size_t s = 0; s < n; ++s) max_cluster = std::max(max_cluster, p.cluster[s]);
+    std::vector<std::vector<std::uint32_t>> members(static_cast<std::size_t>(max_cluster + 1));
+    for (std::uint32_t id = 0; id < n; ++id) {
+        const std::int32_t c = p.cluster[p.slot_of_id[id]];
+        if (c >= 0) members[static_cast<std::size_t>(c)].push_back(id);
+    }
+    t.begin.assign(n + 1, 0);
+    for (const auto& m : members)
+        for (std::uint32_t a : m) t.begin[a + 1] = static_cast<std::uint32_t>(m.size() - 1);
+    for (std::size_t a = 0; a < n; ++a) t.begin[a + 1] += t.begin[a];
+    t.partner.resize(t.begin[n]);
+    for (const auto& m : members)
+        for (std::uint32_t a : m) {
+            std::uint32_t k = t.begin[a];
+            for (std::uint32_t b : m)
+                if (b != a) t.partner[k++] = b;
+        }
+    return t;
+}
+
+PairBuilder::Settings Simulation::builder_settings() const {
+    return {params.skin, params.periodic_x, params.period_x};
+}
+
+LawParams Simulation::wall_law(std::size_t w) const {
+    LawParams l = params.law;
+    l.tangential = walls[w].rough && l.tangential;
+    l.mu = walls[w].mu;
+    l.cohesion = 0.0;
+    return l;
+}
+
+void Simulation::initialize() {
+    particles.rebuild_slot_map();
+    bonds = build_bond_topology(particles);
+    wall_law_.clear();
+    for (std::size_t w = 0; w < walls.size(); ++w) wall_law_.push_back(wall_law(w));
+    rebuild_pairs();
+    compute_forces<false>();
+}
+
+void Simulation::rebuild_pairs() {
+    builder_.rebuild(particles, bonds, walls, builder_settings(), contacts, wall_contacts);
+    wall_shift_.assign(walls.size(), Vec2{});
+    max_disp2_ = 0.0;
+    force_rebuild_ = false;
+}
+
+template <bool kUpdateHistory>
+void Simulation::compute_forces() {
+    ParticleStore& p = particles;
+    ContactStore& cs = contacts;
+    const double dt = params.dt;
+    const double W = params.period_x;
+    const LawParams law = params.law;
+
+    // Phase A: one iteration per candidate pair, writing only that pair's slots.
+    const long long npairs = static_cast<long long>(cs.size());
+#pragma omp parallel for schedule(static)
+    for (long long kk = 0; kk < npairs; ++kk) {
+        const std::size_t k = static_cast<std::size_t>(kk);
+        const std::uint32_t i = cs.i[k], j = cs.j[k];
+        const Vec2 d = p.x[i] - (p.x[j] + Vec2{cs.shift[k] * W, 0.0});
+        const double r2 = norm2(d);
+        const double rsum = p.radius[i] + p.radius[j];
+        const bool bonded = cs.bonded[k] != 0;
+        if (!bonded && r2 >= rsum * rsum) {
+            cs.xi[k] = {};  // history starts afresh at the next touch
+            cs.f[k] = {};
+            cs.c[k] = 0.0;
+            continue;
+        }
+        const double r = std::sqrt(r2);
+        const double mi = p.mass[i], mj = p.mass[j];
+        const PairKinematics kin{(1.0 / r) * d, rsum - r, p.v[i] - p.v[j],
+                                 p.radius[i] * p.omega[i] + p.radius[j] * p.omega[j],
+                                 mi * mj / (mi + mj)};
+        Vec2 xi = cs.xi[k];
+        const PairForce pf = bonded ? eval_contact<true>(law, kin, dt, xi)
+                                    : eval_contact<false>(law, kin, dt, xi);
+        if constexpr (kUpdateHistory) cs.xi[k] = xi;
+        cs.f[k] = pf.f;
+        cs.c[k] = pf.c;
+    }
+
+    // Phase B: per disc, fixed order: gravity, owned pairs, incoming pairs, walls.
+    WallContactStore& ws = wall_contacts;
+    const Vec2 g = params.gravity;
+    const long long n = static_cast<long long>(p.size());
+#pragma omp parallel for schedule(static)
+    for (long long ii = 0; ii < n; ++ii) {
+        const std::size_t i = static_cast<std::size_t>(ii);
+        const double ri = p.radius[i];
+        Vec2 f = p.mass[i] * g;
+        double t = 0.0;
+        for (std::uint32_t k = cs.begin[i]; k < cs.begin[i + 1]; ++k) {
+            f += cs.f[k];
+            t -= ri * cs.c[k];
+        }
+        for (std::uint32_t q = cs.in_begin[i]; q < cs.in_begin[i + 1]; ++q) {
+            const std::uint32_t k = cs.in_pair[q];
+            f -= cs.f[k];
+            t -= ri * cs.c[k];
+        }
+        for (std::uint32_t k = ws.begin[i]; k < ws.begin[i + 1]; ++k) {
+            const Wall& w = walls[ws.wall[k]];
+            const Vec2 d = p.x[i] - closest_point(w, p.x[i]);
+            const double r2 = norm2(d);
+            if (r2 >= ri * ri) {
+                ws.xi[k] = {};
+                ws.f[k] = {};
+                ws.c[k] = 0.0;
+                continue;
+            }
+            const double r = std::sqrt(r2);
+            const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
+            const Vec2 v_wall = w.velocity + w.surface_speed * u;
+            const PairKinematics kin{(1.0 / r) * d, ri - r, p.v[i] - v_wall, ri * p.omega[i],
+                                     p.mass[i]};
+            Vec2 xi = ws.xi[k];
+            const PairForce pf = eval_contact<false>(wall_law_[ws.wall[k]], kin, dt, xi);
+            if constexpr (kUpdateHistory) ws.xi[k] = xi;
+            ws.f[k] = pf.f;
+            ws.c[k] = pf.c;
+            f += pf.f;
+            t -= ri * pf.c;
+        }
+        p.force[i] = f;
+        p.torque[i] = t;
+    }
+}
+
+void Simulation::step() {
+    ParticleStore& p = particles;
+    const double dt = params.dt;
+    const double half = 0.5 * dt;
+    const auto& x_ref = builder_.x_ref();
+    double max_d2 = max_disp2_;
+    const long long n = static_cast<long long>(p.size());
+#pragma omp parallel for schedule(static) reduction(max : max_d2)
+    for (long long ii = 0; ii < n; ++ii) {
+        const std::size_t i = static_cast<std::size_t>(ii);
+        p.v[i] += (half * p.inv_mass[i]) * p.force[i];
+        p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
+        p.x[i] += dt * p.v[i];
+        p.theta[i] += dt * p.omega[i];
+        max_d2 = std::max(max_d2, norm2(p.x[i] - x_ref[i]));
+    }
+    max_disp2_ = max_d2;
+    double wall_move = 0.0;
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+        const Vec2 dx = dt * walls[w].velocity;
+        walls[w].a += dx;
+        walls[w].b += dx;
+        wall_shift_[w] += dx;
+        wall_move = std::max(wall_move, norm(wall_shift_[w]));
+    }
+    for (auto& b : boundaries) b->after_drift(*this);
+
+    if (force_rebuild_ || std::sqrt(max_disp2_) + wall_move > 0.5 * params.skin) rebuild_pairs();
+    compute_forces<true>();
+    for (auto& b : boundaries) b->add_forces(*this);
+
+#pragma omp parallel for schedule(static)
+    for (long long ii = 0; ii < n; ++ii) {
+        const std::size_t i = static_cast<std::size_t>(ii);
+        p.v[i] += (half * p.inv_mass[i]) * p.force[i];
+        p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
+    }
+    for (auto& b : boundaries) b->after_step(*this);
+    ++step_count;
+    time = static_cast<double>(step_count) * dt;
+}
+
+double Simulation::kinetic_energy() const {
+    const ParticleStore& p = particles;
+    return deterministic_sum(p.size(), [&](std::size_t i) { return 0.5 * p.mass[i] * norm2(p.v[i]); });
+}
+
+EnergyReport Simulation::energies() const {
+    const ParticleStore& p = particles;
+    EnergyReport e;
+    e.kinetic_translational = kinetic_energy();
+    e.kinetic_rotational = deterministic_sum(p.size(), [&](std::size_t i) {
+        const double inertia = 0.5 * p.mass[i] * p.radius[i] * p.radius[i];
+        return 0.5 * inertia * p.omega[i] * p.omega[i];
+    });
+    e.gravitational = deterministic_sum(p.size(), [&](std::size_t i) {
+        return -p.mass[i] * dot(params.gravity, p.x[i]);
+    });
+    const ContactStore& cs = contacts;
+    const double W = params.period_x;
+    const LawParams& law = params.law;
+    double elastic = deterministic_sum(cs.size(), [&](std::size_t k) {
+        const Vec2 d = p.x[cs.i[k]] - (p.x[cs.j[k]] + Vec2{cs.shift[k] * W, 0.0});
+        const double delta = p.radius[cs.i[k]] + p.radius[cs.j[k]] - norm(d);
+        if (delta <= 0.0 && !cs.bonded[k]) return 0.0;
+        return 0.5 * law.k_n * delta * delta + 0.5 * law.k_s * norm2(cs.xi[k]);
+    });
+    const WallContactStore& ws = wall_contacts;
+    for (std::size_t i = 0; i < p.size(); ++i)
+        for (std::uint32_t k = ws.begin[i]; k < ws.begin[i + 1]; ++k) {
+            const double delta = p.radius[i] - norm(p.x[i] - closest_point(walls[ws.wall[k]], p.x[i]));
+            if (delta > 0.0)
+                elastic += 0.5 * law.k_n * delta * delta + 0.5 * wall_law_[ws.wall[k]].k_s * norm2(ws.xi[k]);
+        }
+    e.elastic = elastic;
+    return e;
+}
+
+std::size_t Simulation::touching_contacts() const {
+    std::size_t count = 0;
+    const ContactStore& cs = contacts;
+    for (std::size_t k = 0; k < cs.size(); ++k)
+        if (!cs.bonded[k] && (cs.f[k].x != 0.0 || cs.f[k].y != 0.0 || cs.xi[k].x != 0.0 || cs.xi[k].y != 0.0))
+            ++count;
+    for (std::size_t k = 0; k < wall_contacts.size(); ++k)
+        if (wall_contacts.f[k].x != 0.0 || wall_contacts.f[k].y != 0.0) ++count;
+    return count;
+}
+
+double Simulation::max_overlap_ratio() const {
+    const ParticleStore& p = particles;
+    const ContactStore& cs = contacts;
+    double worst = 0.0;
+    for (std::size_t k = 0; k < cs.size(); ++k) {
+        if (cs.bonded[k]) continue;
+        const Vec2 d = p.x[cs.i[k]] - (p.x[cs.j[k]] + Vec2{cs.shift[k] * params.period_x, 0.0});
+        const double ri = p.radius[cs.i[k]], rj = p.radius[cs.j[k]];
+        const double delta = ri + rj - norm(d);
+        if (delta > 0.0) worst = std::max(worst, delta / std::min(ri, rj));
+    }
+    return worst;
+}
+
+Vec2 Simulation::wall_force(std::size_t w) const {
+    Vec2 f{};
+    for (std::size_t k = 0; k < wall_contacts.size(); ++k)
+        if (wall_contacts.wall[k] == w) f -= wall_contacts.f[k];
+    return f;
+}
+
+std::uint64_t Simulation::state_hash() const {
+    const ParticleStore& p = particles;
+    Fnv1a h;
+    for (std::uint32_t id = 0; id < p.size(); ++id) {
+        const std::size_t s = p.slot_of_id[id];
+        h.add(p.x[s]); h.add(p.v[s]); h.add(p.theta[s]); h.add(p.omega[s]);
+    }
+    std::vector<std::pair<std::uint64_t, Vec2>> hist;
+    for (std::size_t k = 0; k < contacts.size(); ++k) hist.emplace_back(contacts.key[k], contacts.xi[k]);
+    for (std::size_t k = 0; k < wall_contacts.size(); ++k)
+        hist.emplace_back(wall_contacts.key[k] | (1ULL << 63), wall_contacts.xi[k]);
+    std::sort(hist.begin(), hist.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [key, xi] : hist) {
+        if (xi.x == 0.0 && xi.y == 0.0) continue;
+        h.add(key); h.add(xi);
+    }
+    h.add(step_count);
+    return h.value();
+}
+
+}  // namespace orodem

@@ -1,0 +1,100 @@
+// Simulation: the particle state, its contacts and walls, and the step loop
+// (velocity Verlet; SPEC §1). It owns no I/O: apps and io/ read it through
+// its public members and the diagnostics below.
+//
+// One step:
+//   half kick (v += F/m dt/2, ω += T/I dt/2) and drift (x += v dt, θ += ω dt),
+//     tracking the largest displacement since the last rebuild;
+//   walls move; boundaries' after_drift;
+//   rebuild pairs if needed (PairBuilder);
+//   phase A: each disc pair / disc-wall candidate evaluates the contact law
+//     into its own slot (parallel over pairs, no shared writes);
+//   phase B: each disc sums gravity, its outgoing then incoming pairs, then
+//     its wall contacts, in that fixed order (parallel over discs);
+//   boundaries' add_forces; second half kick; boundaries' after_step.
+// No allocation happens in a step once the stores have reached their size.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "orodem/engine/boundary.hpp"
+#include "orodem/neighbor/pair_builder.hpp"
+#include "orodem/physics/contact_law.hpp"
+#include "orodem/state/contacts.hpp"
+#include "orodem/state/particles.hpp"
+
+namespace orodem {
+
+struct SimParams {
+    LawParams law;              // disc-disc and bond law
+    double dt = 0.0;            // timestep [s]
+    Vec2 gravity{0.0, -9.81};   // [m/s²]
+    double skin = 0.0;          // Verlet skin [m]
+    bool periodic_x = false;    // periodic in x with period period_x
+    double period_x = 0.0;      // W [m]
+};
+
+struct EnergyReport {
+    double kinetic_translational = 0;  // ½ Σ m v² [J]
+    double kinetic_rotational = 0;     // ½ Σ I ω² [J]
+    double gravitational = 0;          // Σ m (-g·x) [J], zero at the origin
+    double elastic = 0;                // ½ k_n δ² + ½ k_s |ξ|² over pairs, bonds and walls [J]
+    double total() const { return kinetic_translational + kinetic_rotational + gravitational + elastic; }
+};
+
+class Simulation {
+public:
+    ParticleStore particles;
+    ContactStore contacts;
+    WallContactStore wall_contacts;
+    std::vector<Wall> walls;
+    BondTopology bonds;
+    SimParams params;
+    std::vector<std::unique_ptr<Boundary>> boundaries;
+
+    std::uint64_t step_count = 0;  // steps taken
+    double time = 0.0;             // simulated time [s]
+
+    /// Builds the bond topology from cluster ids, the first pair list and the
+    /// forces at t = 0. Call once after particles, walls and params are set.
+    void initialize();
+    /// Advances one timestep.
+    void step();
+    void advance(std::uint64_t n) { for (std::uint64_t k = 0; k < n; ++k) step(); }
+
+    /// Law parameters of wall w (its roughness and μ on top of params.law).
+    LawParams wall_law(std::size_t w) const;
+
+    // Diagnostics: deterministic (fixed-chunk) sums, safe at any thread count.
+    double kinetic_energy() const;  // translational, ½ Σ m v² [J]
+    EnergyReport energies() const;
+    std::size_t touching_contacts() const;  // unbonded pairs + wall contacts with δ > 0
+    double max_overlap_ratio() const;       // max over unbonded touching pairs of δ / min(R_i, R_j)
+    /// Total force exerted by discs on wall w [N] (opposite of the forces on the discs).
+    Vec2 wall_force(std::size_t w) const;
+    std::uint64_t rebuild_count() const { return builder_.rebuild_count(); }
+    /// Hash of the full dynamic state in id order (x, v, θ, ω, and ξ by key).
+    std::uint64_t state_hash() const;
+
+    /// Forces a pair rebuild at the next step (e.g. after particles were moved by hand).
+    void request_rebuild() { force_rebuild_ = true; }
+
+private:
+    void rebuild_pairs();
+    template <bool kUpdateHistory>
+    void compute_forces();
+    PairBuilder::Settings builder_settings() const;
+
+    PairBuilder builder_;
+    std::vector<Vec2> wall_shift_;    // wall displacement since the last rebuild [m]
+    std::vector<LawParams> wall_law_; // cached per wall
+    double max_disp2_ = 0.0;          // largest |x - x_ref|² since the last rebuild [m²]
+    bool force_rebuild_ = false;
+};
+
+/// Builds the bond topology (all pairs inside each cluster) from cluster ids.
+BondTopology build_bond_topology(const ParticleStore& p);
+
+}  // namespace orodem

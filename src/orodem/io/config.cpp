@@ -1,0 +1,335 @@
+// Config loader: a small schema reader over toml++. Each section is read by a
+// Reader that records which keys it consumed; any key left over is an unknown
+// key and is refused with the list of allowed keys. Values are checked for
+// type and range here, before anything runs.
+#include "orodem/io/config.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "orodem/core/error.hpp"
+
+namespace orodem {
+
+namespace {
+
+std::string where(const std::string& file, const toml::source_region& src) {
+    if (src.begin.line == 0) return file;
+    return fmt::format("{}:{}:{}", file, src.begin.line, src.begin.column);
+}
+
+std::string show(const toml::node& n) {
+    std::ostringstream os;
+    if (auto s = n.as_string()) os << '"' << s->get() << '"';
+    else if (n.is_table()) os << "a table";
+    else if (n.is_array()) os << "an array";
+    else n.visit([&](auto&& v) { os << v; });
+    return os.str();
+}
+
+const char* type_name(const toml::node& n) {
+    switch (n.type()) {
+        case toml::node_type::string: return "a string";
+        case toml::node_type::integer: return "an integer";
+        case toml::node_type::floating_point: return "a number";
+        case toml::node_type::boolean: return "a boolean";
+        case toml::node_type::table: return "a table";
+        case toml::node_type::array: return "an array";
+        default: return "a date/time";
+    }
+}
+
+struct Range {
+    double lo = -std::numeric_limits<double>::infinity();
+    double hi = std::numeric_limits<double>::infinity();
+    bool lo_open = false;  // lo itself not allowed
+    bool hi_open = false;
+    std::string text() const {
+        const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+        if (has_lo && has_hi)
+            return fmt::format("a number in {}{:g}, {:g}{}", lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]");
+        if (has_lo) return fmt::format("a number {} {:g}", lo_open ? ">" : ">=", lo);
+        if (has_hi) return fmt::format("a number {} {:g}", hi_open ? "<" : "<=", hi);
+        return "a number";
+    }
+    bool contains(double v) const {
+        if (!std::isfinite(v)) return false;
+        if (lo_open ? !(v > lo) : !(v >= lo)) return false;
+        if (hi_open ? !(v < hi) : !(v <= hi)) return false;
+        return true;
+    }
+};
+Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }
+Range non_negative() { return {0.0, std::numeric_limits<double>::infinity(), false, false}; }
+Range closed(double a, double b) { return {a, b, false, false}; }
+
+class Reader {
+public:
+    Reader(const toml::table* t, std::string prefix, const std::string& file, toml::table& out,
+           const toml::source_region& src)
+        : t_(t), prefix_(std::move(prefix)), file_(file), out_(out), src_(src) {}
+
+    double number(const char* key, double def, Range r) {
+        const toml::node* n = find(key);
+        double v = def;
+        if (n) {
+            if (auto f = n->as_floating_point()) v = f->get();
+            else if (auto i = n->as_integer()) v = static_cast<double>(i->get());
+            else fail(*n, key, fmt::format("must be {}, not {}", r.text(), type_name(*n)));
+            if (!r.contains(v)) fail(*n, key, fmt::format("must be {}", r.text()));
+        }
+        out_.insert_or_assign(key, v);
+        return v;
+    }
+    std::int64_t integer(const char* key, std::int64_t def, std::int64_t lo, std::int64_t hi) {
+        const toml::node* n = find(key);
+        std::int64_t v = def;
+        if (n) {
+            auto i = n->as_integer();
+            if (!i) fail(*n, key, fmt::format("must be an integer in [{}, {}], not {}", lo, hi, type_name(*n)));
+            v = i->get();
+            if (v < lo || v > hi) fail(*n, key, fmt::format("must be an integer in [{}, {}]", lo, hi));
+        }
+        out_.insert_or_assign(key, v);
+        return v;
+    }
+    bool boolean(const char* key, bool def) {
+        const toml::node* n = find(key);
+        bool v = def;
+        if (n) {
+            auto b = n->as_boolean();
+            if (!b) fail(*n, key, fmt::format("must be true or false, not {}", type_name(*n)));
+            v = b->get();
+        }
+        out_.insert_or_assign(key, v);
+        return v;
+    }
+    std::string string(const char* key, const std::string& def) {
+        const toml::node* n = find(key);
+        std::string v = def;
+        if (n) {
+            auto s = n->as_string();
+            if (!s) fail(*n, key, fmt::format("must be a string, not {}", type_name(*n)));
+            v = s->get();
+        }
+        out_.insert_or_assign(key, v);
+        return v;
+    }
+    std::string choice(const char* key, const std::string& def, std::initializer_list<const char*> allowed) {
+        std::string list;
+        for (const char* a : allowed) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", a);
+        const toml::node* n = find(key);
+        std::string v = def;
+        if (n) {
+            auto s = n->as_string();
+            if (!s) fail(*n, key, fmt::format("must be one of {}, not {}", list, type_name(*n)));
+            v = s->get();
+            bool ok = false;
+            for (const char* a : allowed) ok = ok || v == a;
+            if (!ok) fail(*n, key, fmt::format("must be one of {}", list));
+        }
+        out_.insert_or_assign(key, v);
+        return v;
+    }
+    /// A value error found after reading (e.g. r_min > r_max).
+    [[noreturn]] void refuse(const char* key, const std::string& why) const {
+        const toml::node* n = t_ ? t_->get(key) : nullptr;
+        if (n) fail(*n, key, why);
+        throw ConfigError(fmt::format("{}: key '{}{}': {}", where(file_, src_), prefix_, key, why));
+    }
+    void finish() const {
+        if (!t_) return;
+        for (auto&& [k, v] : *t_) {
+            if (used_.count(std::string(k.str()))) continue;
+            std::string allowed;
+            for (auto&& [ok, ov] : out_) allowed += fmt::format("{}{}", allowed.empty() ? "" : ", ", ok.str());
+            throw ConfigError(fmt::format("{}: unknown key '{}{}' = {}; allowed keys in [{}]: {}",
+                                          where(file_, k.source()), prefix_, k.str(), show(v),
+                                          prefix_.substr(0, prefix_.size() - 1), allowed));
+        }
+    }
+
+private:
+    const toml::node* find(const char* key) {
+        used_.insert(key);
+        return t_ ? t_->get(key) : nullptr;
+    }
+    [[noreturn]] void fail(const toml::node& n, const char* key, const std::string& why) const {
+        throw ConfigError(fmt::format("{}: key '{}{}' = {}: {}", where(file_, n.source()), prefix_, key,
+                                      show(n), why));
+    }
+
+    const toml::table* t_;
+    std::string prefix_;
+    const std::string& file_;
+    toml::table& out_;
+    toml::source_region src_;
+    std::set<std::string> used_;
+};
+
+/// Applies one override "a.b.c=value" to the parsed table.
+void apply_override(toml::table& root, const Override& o, const std::string& file) {
+    toml::table parsed;
+    try {
+        const std::string doc = "v = " + o.second;
+        parsed = toml::parse(std::string_view(doc), std::string_view("--set"));
+    } catch (const toml::parse_error& e) {
+        throw ConfigError(fmt::format("--set {}={}: value is not valid TOML ({}); strings need quotes, e.g. --set packing.kind='\"discs\"'",
+                                      o.first, o.second, e.description()));
+    }
+    toml::table* t = &root;
+    std::string_view path = o.first;
+    for (;;) {
+        const auto dot = path.find('.');
+        if (dot == std::string_view::npos) break;
+        const std::string part(path.substr(0, dot));
+        auto* sub = t->get(part);
+        if (!sub) {
+            t->insert(part, toml::table{});
+            sub = t->get(part);
+        }
+        if (!sub->is_table())
+            throw ConfigError(fmt::format("--set {}: '{}' is not a table in {}", o.first, part, file));
+        t = sub->as_table();
+        path.remove_prefix(dot + 1);
+    }
+    t->insert_or_assign(std::string(path), *parsed.get("v"));
+}
+
+Config read(const toml::table& root, const std::string& file) {
+    Config c;
+    toml::table& out = c.resolved;
+    const toml::source_region none{};
+
+    auto section = [&](const char* name) -> std::pair<const toml::table*, toml::table*> {
+        const toml::node* n = root.get(name);
+        if (n && !n->is_table())
+            throw ConfigError(fmt::format("{}: key '{}' = {}: must be a table [{}]", where(file, n->source()),
+                                          name, show(*n), name));
+        out.insert_or_assign(name, toml::table{});
+        return {n ? n->as_table() : nullptr, out.get(name)->as_table()};
+    };
+
+    // Top level: only known sections.
+    for (auto&& [k, v] : root) {
+        static const std::set<std::string> known = {"run", "material", "packing", "numerics"};
+        if (!known.count(std::string(k.str())))
+            throw ConfigError(fmt::format("{}: unknown key '{}' = {}; allowed top-level tables: run, material, packing, numerics",
+                                          where(file, k.source()), k.str(), show(v)));
+    }
+
+    {
+        auto [in, o] = section("run");
+        Reader r(in, "run.", file, *o, none);
+        c.run.experiment = r.choice("experiment", c.run.experiment, {"settle"});
+        c.run.seed = static_cast<std::uint64_t>(r.integer("seed", static_cast<std::int64_t>(c.run.seed), 0, std::numeric_limits<std::int64_t>::max()));
+        c.run.threads = static_cast<int>(r.integer("threads", c.run.threads, 0, 1024));
+        c.run.output_interval = r.number("output_interval", c.run.output_interval, positive());
+        r.finish();
+    }
+    {
+        auto [in, o] = section("material");
+        Reader r(in, "material.", file, *o, none);
+        MaterialConfig& m = c.material;
+        m.density = r.number("density", m.density, positive());
+        m.k_n = r.number("k_n", m.k_n, positive());
+        m.k_s_over_k_n = r.number("k_s_over_k_n", m.k_s_over_k_n, closed(0.0, 10.0));
+        m.mu = r.number("mu", m.mu, closed(0.0, 10.0));
+        m.cohesion = r.number("cohesion", m.cohesion, non_negative());
+        m.damping_kind = r.choice("damping_kind", m.damping_kind, {"restitution", "ratio", "coefficient"});
+        if (m.damping_kind == "restitution") {
+            m.damping_normal = r.number("damping_normal", m.damping_normal, {0.0, 1.0, true, false});
+            m.damping_tangential = r.number("damping_tangential", m.damping_tangential, closed(0.0, 1.0));
+        } else if (m.damping_kind == "ratio") {
+            m.damping_normal = r.number("damping_normal", m.damping_normal, {0.0, 1.0, false, true});
+            m.damping_tangential = r.number("damping_tangential", m.damping_tangential, closed(0.0, 1.0));
+        } else {
+            m.damping_normal = r.number("damping_normal", m.damping_normal, non_negative());
+            m.damping_tangential = r.number("damping_tangential", m.damping_tangential, non_negative());
+        }
+        m.clamp_normal = r.boolean("clamp_normal", m.clamp_normal);
+        r.finish();
+    }
+    {
+        auto [in, o] = section("packing");
+        Reader r(in, "packing.", file, *o, none);
+        PackingConfig& p = c.packing;
+        p.kind = r.choice("kind", p.kind, {"hexagonal", "discs", "clusters"});
+        p.r_min = r.number("r_min", p.r_min, positive());
+        p.r_max = r.number("r_max", p.r_max, positive());
+        if (p.r_max < p.r_min)
+            r.refuse("r_max", fmt::format("must be >= packing.r_min = {:g}", p.r_min));
+        p.h0 = r.number("h0", p.h0, positive());
+        if (p.h0 < 4.0 * p.r_max)
+            r.refuse("h0", fmt::format("must be at least 4 r_max = {:g} m (two disc layers)", 4.0 * p.r_max));
+        p.length = r.number("length", p.length, positive());
+        if (p.length < 8.0 * p.r_max)
+            r.refuse("length", fmt::format("must be at least 8 r_max = {:g} m", 8.0 * p.r_max));
+        const std::int64_t seed = r.integer("seed", 0, 0, std::numeric_limits<std::int64_t>::max());
+        p.seed = seed == 0 ? c.run.seed : static_cast<std::uint64_t>(seed);
+        o->insert_or_assign("seed", static_cast<std::int64_t>(p.seed));
+        p.settle_ke_ratio = r.number("settle_ke_ratio", p.settle_ke_ratio, {0.0, 1.0, true, true});
+        p.settle_damping_ratio = r.number("settle_damping_ratio", p.settle_damping_ratio, {0.0, 1.0, true, true});
+        p.settle_max_steps = r.integer("settle_max_steps", p.settle_max_steps, 1, std::numeric_limits<std::int64_t>::max());
+        p.wall_mu = r.number("wall_mu", p.wall_mu, closed(0.0, 10.0));
+        p.cache_dir = r.string("cache_dir", p.cache_dir);
+        r.finish();
+    }
+    {
+        auto [in, o] = section("numerics");
+        Reader r(in, "numerics.", file, *o, none);
+        NumericsConfig& n = c.numerics;
+        n.dt = r.number("dt", n.dt, non_negative());
+        n.safety = r.number("safety", n.safety, {0.0, 0.5, true, false});
+        n.skin = r.number("skin", n.skin, non_negative());
+        if (n.skin == 0.0) n.skin = 0.4 * c.packing.r_min;
+        o->insert_or_assign("skin", n.skin);
+        n.gravity = r.number("gravity", n.gravity, non_negative());
+        r.finish();
+    }
+    return c;
+}
+
+}  // namespace
+
+Override parse_override(const std::string& text) {
+    const auto eq = text.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw ConfigError(fmt::format("--set '{}': expected key=value, e.g. --set material.mu=0.5", text));
+    return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+Config parse_config(const std::string& text, const std::string& name, const std::vector<Override>& overrides) {
+    toml::table root;
+    try {
+        root = toml::parse(std::string_view(text), std::string_view(name));
+    } catch (const toml::parse_error& e) {
+        throw ConfigError(fmt::format("{}: not valid TOML: {}", where(name, e.source()), e.description()));
+    }
+    for (const auto& o : overrides) apply_override(root, o, name);
+    Config c = read(root, name);
+    c.path = name;
+    return c;
+}
+
+Config load_config(const std::string& path, const std::vector<Override>& overrides) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw ConfigError(fmt::format("{}: cannot open config file", path));
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return parse_config(ss.str(), path, overrides);
+}
+
+std::string to_toml(const Config& c) {
+    std::ostringstream os;
+    os << "# orodem resolved config: every key with its final value (defaults written out)\n";
+    os << toml::toml_formatter(c.resolved) << '\n';
+    return os.str();
+}
+
+}  // namespace orodem

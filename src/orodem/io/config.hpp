@@ -1,0 +1,83 @@
+// Config: the typed, validated form of a TOML config file. Parsing happens
+// only here (io/config.cpp); everything downstream receives these structs.
+//
+// Every default lives in the member initialisers below, with its unit. The
+// loader fills `resolved` with every key actually used, defaults included,
+// which is what a run directory's config.toml holds (SPEC §4).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <toml++/toml.h>
+
+namespace orodem {
+
+struct RunConfig {
+    std::string experiment = "settle";  // what `orodem run` does: "settle" (prepare a layer)
+    std::uint64_t seed = 1;             // master seed; packing.seed defaults to it [-]
+    int threads = 0;                    // OpenMP threads, 0 = all cores [-]
+    double output_interval = 0.05;      // settle: simulated time between series rows [s]
+};
+
+struct MaterialConfig {
+    double density = 2500.0;          // ρ, disc mass m = ρ π R² per unit depth [kg/m³]
+    double k_n = 1.0e8;               // normal spring stiffness [N/m]
+    double k_s_over_k_n = 1.0;        // k_s / k_n [-]
+    double mu = 0.3;                  // μ_i = tan φ_i, disc-disc Coulomb coefficient [-]
+    double cohesion = 0.0;            // C in F_max = μ F_n + C [N]
+    std::string damping_kind = "restitution";  // restitution | ratio | coefficient
+    double damping_normal = 0.5;      // e (restitution), ζ_n (ratio) or γ̃_n [1/s] (coefficient, F = m_eff γ̃ v)
+    double damping_tangential = 0.0;  // ζ_s (restitution, ratio) or γ̃_s [1/s] (coefficient)
+    bool clamp_normal = true;         // unbonded contacts never attract (F_n >= 0)
+};
+
+struct PackingConfig {
+    std::string kind = "clusters";    // hexagonal | discs | clusters ([33]-[37])
+    double r_min = 0.5;               // smallest disc radius [m]
+    double r_max = 1.0;               // largest disc radius [m] (hexagonal uses r_max)
+    double length = 100.0;            // layer length L [m]
+    double h0 = 10.0;                 // mean layer thickness after the cut [m]
+    std::uint64_t seed = 0;           // packing seed; 0 = run.seed [-]
+    double settle_ke_ratio = 1.0e-6;  // settled when E_kin < ratio · m_total g h0 [-]
+    double settle_damping_ratio = 0.5;  // ζ_n and ζ_s used while settling [-]
+    std::int64_t settle_max_steps = 2000000;  // give up (error) after this many steps [-]
+    double wall_mu = 0.3;             // μ of the settling box's floor (rough) [-]
+    std::string cache_dir = "";       // settled packings are reused from here; "" = $XDG_CACHE_HOME/orodem or ~/.cache/orodem
+};
+
+struct NumericsConfig {
+    double dt = 0.0;                  // timestep [s]; 0 = safety · sqrt(m_min / k_max)
+    double safety = 0.1;              // dt / sqrt(m_min / k_max) when automatic [-]
+    double skin = 0.0;                // Verlet skin [m]; 0 = 0.4 r_min
+    double gravity = 9.81;            // g, along -y [m/s²]
+};
+
+struct Config {
+    std::string path;                 // file it came from
+    RunConfig run;
+    MaterialConfig material;
+    PackingConfig packing;
+    NumericsConfig numerics;
+    toml::table resolved;             // every key with its final value
+};
+
+/// One `--set key=value` override; value is TOML syntax (1.5, true, "clusters").
+using Override = std::pair<std::string, std::string>;
+
+/// Parses "key=value"; throws ConfigError when there is no '='.
+Override parse_override(const std::string& text);
+
+/// Loads and validates. Throws ConfigError with a one-line message
+/// "FILE:LINE:COL: key 'a.b' = VALUE: what is allowed" on any problem.
+Config load_config(const std::string& path, const std::vector<Override>& overrides = {});
+/// Same from a string (tests); `name` stands in for the file name.
+Config parse_config(const std::string& text, const std::string& name,
+                    const std::vector<Override>& overrides = {});
+
+/// The resolved config as TOML text.
+std::string to_toml(const Config& c);
+
+}  // namespace orodem

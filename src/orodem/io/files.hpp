@@ -1,0 +1,41 @@
+// Checked file writing. Every write goes to "<path>.tmp", is flushed and
+// fsync'ed, then renamed over <path>, so a crash or a full disk never leaves
+// a half-written file under the final name. Failures throw IoError naming the
+// path and the OS error.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+namespace orodem {
+
+/// Writes bytes to path atomically (tmp + fsync + rename).
+void write_file_atomic(const std::string& path, std::string_view bytes);
+
+/// Reads a whole file; throws IoError if it cannot be opened or read.
+std::string read_file(const std::string& path);
+
+/// Creates a directory and its parents; throws IoError on failure.
+void make_dirs(const std::string& path);
+
+/// An append-only text file (log.txt, series.csv) whose every line is
+/// written and flushed at once, and whose errors throw IoError.
+class LineFile {
+public:
+    LineFile() = default;
+    explicit LineFile(const std::string& path);
+    LineFile(const LineFile&) = delete;
+    LineFile& operator=(const LineFile&) = delete;
+    LineFile(LineFile&& o) noexcept : f_(o.f_), path_(std::move(o.path_)) { o.f_ = nullptr; }
+    LineFile& operator=(LineFile&& o) noexcept;
+    ~LineFile();
+    void line(std::string_view text);
+    bool is_open() const { return f_ != nullptr; }
+
+private:
+    std::FILE* f_ = nullptr;
+    std::string path_;
+};
+
+}  // namespace orodem

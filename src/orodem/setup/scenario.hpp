@@ -1,0 +1,31 @@
+// Scenario: turns a validated Config into engine objects (law parameters,
+// timestep, simulations). The one place where config values become physics.
+#pragma once
+
+#include "orodem/engine/simulation.hpp"
+#include "orodem/io/config.hpp"
+#include "orodem/physics/stability.hpp"
+
+namespace orodem {
+
+/// Contact law from the material section: damping given as restitution e,
+/// ratio ζ (γ = 2ζ sqrt(m_eff k)) or raw coefficient γ̃ (γ = m_eff γ̃).
+LawParams make_law(const MaterialConfig& m);
+
+/// Same law with both dashpots set to damping ratio zeta (settling).
+LawParams with_damping_ratio(LawParams law, double zeta);
+
+/// Mass of the lightest disc the packing can hold [kg].
+double lightest_mass(const Config& c);
+
+/// dt and its stability margin; throws ConfigError when numerics.dt is too large.
+TimestepInfo timestep_for(const Config& c);
+
+/// A simulation of the packing of c settling in its box (not yet initialised
+/// particles are generated from the packing seed).
+Simulation make_settle_simulation(const Config& c);
+
+/// Number of particles (discs) generation will create for c.
+std::size_t generated_particle_count(const Config& c);
+
+}  // namespace orodem

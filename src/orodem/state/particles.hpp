@@ -1,0 +1,78 @@
+// ParticleStore: every disc as structure-of-arrays columns, in slot order.
+// Slots are re-sorted by cell at each neighbour rebuild; `id` is permanent and
+// `slot_of_id` maps back. Fixed (kinematic) discs have inv_mass = inv_inertia
+// = 0, so the integrator needs no branch for them.
+//
+// Hot columns (read for every contact): x, v, omega, radius, mass.
+// Integrator columns: inv_mass, inv_inertia, theta, force, torque.
+// Identity: id, cluster, flags. Cold (analysis/output): initial_depth, side.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "orodem/core/vec2.hpp"
+
+namespace orodem {
+
+/// Per-disc flag bits.
+enum ParticleFlag : std::uint8_t {
+    kFlagFixed = 1u << 0,  ///< held fixed in space (inv_mass = inv_inertia = 0)
+};
+
+struct ParticleStore {
+    std::vector<Vec2> x;               // centre [m]
+    std::vector<Vec2> v;               // velocity [m/s]
+    std::vector<double> theta;         // rotation angle [rad]
+    std::vector<double> omega;         // spin [rad/s], counter-clockwise positive
+    std::vector<double> radius;        // R_i [m]
+    std::vector<double> mass;          // m_i = ρ π R_i² (per unit depth) [kg]
+    std::vector<double> inv_mass;      // 1/m_i, 0 when fixed [1/kg]
+    std::vector<double> inv_inertia;   // 1/I_i, I_i = m_i R_i²/2, 0 when fixed [1/(kg m²)]
+    std::vector<Vec2> force;           // total force of the current step [N]
+    std::vector<double> torque;        // total torque of the current step [N m]
+    std::vector<std::uint32_t> id;     // permanent particle id, 0..N-1
+    std::vector<std::int32_t> cluster; // cluster id, -1 for a lone disc
+    std::vector<std::uint8_t> flags;   // ParticleFlag bits
+    std::vector<double> initial_depth; // depth below the layer top when the layer was cut [m]
+    std::vector<std::uint8_t> side;    // 0 proside, 1 retroside (SPEC §4)
+
+    std::vector<std::uint32_t> slot_of_id;  // id -> current slot
+
+    std::size_t size() const { return x.size(); }
+
+    /// Appends one disc at rest; returns its slot. density ρ [kg/m³].
+    std::size_t add(Vec2 pos, double r, double density, std::int32_t cluster_id = -1);
+
+    /// Applies fn(column) to every per-slot column (not slot_of_id). One list of
+    /// fields, so a new column cannot be forgotten by permute/resize/checkpoint.
+    template <class F>
+    void for_each_column(F&& fn) {
+        fn(x); fn(v); fn(theta); fn(omega); fn(radius); fn(mass); fn(inv_mass);
+        fn(inv_inertia); fn(force); fn(torque); fn(id); fn(cluster); fn(flags);
+        fn(initial_depth); fn(side);
+    }
+    template <class F>
+    void for_each_column(F&& fn) const {
+        const_cast<ParticleStore*>(this)->for_each_column(
+            [&](auto& col) { fn(static_cast<const std::remove_reference_t<decltype(col)>&>(col)); });
+    }
+
+    /// Holds disc `slot` fixed in space from now on (zero velocity, infinite mass).
+    void fix(std::size_t slot) {
+        flags[slot] |= kFlagFixed;
+        inv_mass[slot] = 0.0;
+        inv_inertia[slot] = 0.0;
+        v[slot] = {};
+        omega[slot] = 0.0;
+    }
+
+    /// Rebuilds slot_of_id from id.
+    void rebuild_slot_map();
+
+    /// Keeps only slots with keep[slot] != 0 and renumbers ids 0..n-1 in slot
+    /// order; cluster ids are renumbered densely too. Used when cutting a layer.
+    void compact(const std::vector<std::uint8_t>& keep);
+};
+
+}  // namespace orodem

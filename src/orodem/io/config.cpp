@@ -120,11 +120,16 @@ public:
         out_.insert_or_assign(key, v);
         return v;
     }
-    std::string choice(const char* key, const std::string& def, std::initializer_list<const char*> allowed) {
+    /// required = true: a missing key is refused (there is no sensible default).
+    std::string choice(const char* key, const std::string& def, std::initializer_list<const char*> allowed,
+                       bool required = false) {
         std::string list;
         for (const char* a : allowed) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", a);
         const toml::node* n = find(key);
         std::string v = def;
+        if (!n && required)
+            throw ConfigError(fmt::format("{}: missing required key '{}{}'; allowed values: {}", file_, prefix_,
+                                          key, list));
         if (n) {
             auto s = n->as_string();
             if (!s) fail(*n, key, fmt::format("must be one of {}, not {}", list, type_name(*n)));
@@ -226,7 +231,7 @@ Config read(const toml::table& root, const std::string& file) {
     {
         auto [in, o] = section("run");
         Reader r(in, "run.", file, *o, none);
-        c.run.experiment = r.choice("experiment", c.run.experiment, {"settle"});
+        c.run.experiment = r.choice("experiment", c.run.experiment, {"settle"}, true);
         c.run.seed = static_cast<std::uint64_t>(r.integer("seed", static_cast<std::int64_t>(c.run.seed), 0, std::numeric_limits<std::int64_t>::max()));
         c.run.threads = static_cast<int>(r.integer("threads", c.run.threads, 0, 1024));
         c.run.output_interval = r.number("output_interval", c.run.output_interval, positive());
@@ -325,10 +330,35 @@ Config load_config(const std::string& path, const std::vector<Override>& overrid
     return parse_config(ss.str(), path, overrides);
 }
 
+namespace {
+/// TOML text of one scalar; doubles in the shortest form that reads back exactly.
+std::string scalar_text(const toml::node& n) {
+    if (auto f = n.as_floating_point()) {
+        std::string t = fmt::format("{}", f->get());
+        if (t.find_first_of(".eEn") == std::string::npos) t += ".0";
+        return t;
+    }
+    std::ostringstream os;
+    os << toml::toml_formatter(n);
+    return os.str();
+}
+
+void emit_table(std::ostringstream& os, const toml::table& t, const std::string& path) {
+    if (!path.empty()) os << '[' << path << "]\n";
+    for (auto&& [k, v] : t)
+        if (!v.is_table()) os << k.str() << " = " << scalar_text(v) << '\n';
+    for (auto&& [k, v] : t)
+        if (v.is_table()) {
+            os << '\n';
+            emit_table(os, *v.as_table(), path.empty() ? std::string(k.str()) : path + "." + std::string(k.str()));
+        }
+}
+}  // namespace
+
 std::string to_toml(const Config& c) {
     std::ostringstream os;
     os << "# orodem resolved config: every key with its final value (defaults written out)\n";
-    os << toml::toml_formatter(c.resolved) << '\n';
+    emit_table(os, c.resolved, "");
     return os.str();
 }
 

@@ -16,7 +16,7 @@
 namespace orodem {
 
 struct RunConfig {
-    std::string experiment = "settle";  // what `orodem run` does: "settle" (prepare a layer)
+    std::string experiment = "settle";  // required: what `orodem run` does: "settle" (prepare a layer)
     std::uint64_t seed = 1;             // master seed; packing.seed defaults to it [-]
     int threads = 0;                    // OpenMP threads, 0 = all cores [-]
     double output_interval = 0.05;      // settle: simulated time between series rows [s]

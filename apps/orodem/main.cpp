@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -18,6 +19,8 @@
 #include "orodem/io/config.hpp"
 #include "orodem/io/files.hpp"
 #include "orodem/io/packing_file.hpp"
+#include "orodem/io/pile_file.hpp"
+#include "orodem/setup/bench_pile.hpp"
 #include "orodem/setup/packing.hpp"
 #include "orodem/setup/scenario.hpp"
 
@@ -131,6 +134,38 @@ int cmd_run(const CommonArgs& a, const std::string& out_arg) {
     return 0;
 }
 
+/// The canonical benchmark: run `steps` steps of the settled pile, check the
+/// kinetic energy against the LAMMPS reference, print the speed.
+int cmd_bench_pile(const std::string& pile, std::uint64_t steps, int threads) {
+    if (threads > 0) omp_set_num_threads(threads);
+    const ParticleStore discs = read_pile_file(pile, BenchPile{}.density);
+    Simulation sim = make_bench_pile(discs);
+    const auto t0 = std::chrono::steady_clock::now();
+    sim.initialize();
+    double worst = 0.0;
+    std::uint64_t done = 0;
+    for (const BenchReference& ref : kBenchReference) {
+        if (ref.step > steps) break;
+        sim.advance(ref.step - done);
+        done = ref.step;
+        const double ke = sim.kinetic_energy();
+        const double rel = std::fabs(ke - ref.kinetic_energy) / ref.kinetic_energy;
+        worst = std::max(worst, rel);
+        fmt::print("step {:6d}: kinetic energy {:.9g} (LAMMPS {:.9g}, rel. diff {:.2e})\n", ref.step, ke,
+                   ref.kinetic_energy, rel);
+    }
+    sim.advance(steps - done);
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double n = static_cast<double>(sim.particles.size());
+    fmt::print("discs {} steps {} threads {} loop time {:.3f} s\n", sim.particles.size(), steps,
+               omp_get_max_threads(), secs);
+    fmt::print("timesteps/s {:.1f}  particle-steps/s {:.3e}  rebuilds {}\n", double(steps) / secs,
+               n * double(steps) / secs, sim.rebuild_count());
+    fmt::print("reference check: worst relative kinetic-energy difference {:.2e} ({})\n", worst,
+               worst < 1e-6 ? "matches" : "DIFFERS");
+    return worst < 1e-6 ? 0 : static_cast<int>(ExitCode::unstable);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -150,6 +185,16 @@ int main(int argc, char** argv) {
     check->add_option("config", check_args.config, "TOML config file")->required();
     check->add_option("--set", check_args.sets, "Override a config value")->take_all();
 
+    auto* bench = app.add_subcommand("bench", "Performance benchmarks");
+    bench->require_subcommand(1);
+    auto* pile = bench->add_subcommand("pile", "The canonical 30,000-disc pile of ../shared/bench (checks the LAMMPS reference)");
+    std::string pile_file = "../shared/bench/settled.txt";
+    std::uint64_t pile_steps = 20000;
+    int pile_threads = 0;
+    pile->add_option("--pile", pile_file, "Start state, 'id x y r' per line")->capture_default_str();
+    pile->add_option("--steps", pile_steps, "Timesteps to run")->capture_default_str();
+    pile->add_option("--threads", pile_threads, "OpenMP threads (0 = all cores)");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -159,6 +204,7 @@ int main(int argc, char** argv) {
     try {
         if (*run) return cmd_run(run_args, out);
         if (*check) return cmd_check(check_args);
+        if (*pile) return cmd_bench_pile(pile_file, pile_steps, pile_threads);
     } catch (const ConfigError& e) {
         fmt::print(stderr, "orodem: error: {}\n", e.what());
         return static_cast<int>(ExitCode::config);

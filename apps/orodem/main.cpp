@@ -23,6 +23,10 @@
 #include "orodem/setup/bench_pile.hpp"
 #include "orodem/setup/packing.hpp"
 #include "orodem/setup/scenario.hpp"
+#include "orodem/setup/wedge.hpp"
+#include "orodem/analysis/wedge_profile.hpp"
+#include "orodem/boundary/conveyor_traction.hpp"
+#include "orodem/boundary/fixed_retro.hpp"
 
 namespace fs = std::filesystem;
 using namespace orodem;
@@ -66,71 +70,213 @@ std::string choose_run_dir(const std::string& out, const std::string& config_pat
 int cmd_check(const CommonArgs& a) {
     const Config c = load(a);
     const TimestepInfo t = timestep_for(c);
+    if (is_wedge(c)) check_belt_speed(c);
     const std::size_t n = generated_particle_count(c);
     std::cout << to_toml(c);
     fmt::print("# derived\n");
-    fmt::print("particles generated    = {} discs ({})\n", n, c.packing.kind);
+    fmt::print("particles generated    = {} discs ({}), before the cut to h0\n", n, c.packing.kind);
     fmt::print("layer                  = {:g} m long, h0 = {:g} m\n", c.packing.length, c.packing.h0);
     fmt::print("dt                     = {:.6g} s ({})\n", t.dt, c.numerics.dt > 0 ? "requested" : "automatic");
     fmt::print("stability limit        = {:.6g} s (margin {:.2f}x)\n", t.dt_crit, t.margin());
     fmt::print("collision time t_c     = {:.6g} s ({:.1f} steps)\n", t.t_collision, t.t_collision / t.dt);
+    if (is_wedge(c)) {
+        const double steps = c.wedge.s_max * c.packing.h0 / (c.wedge.v * t.dt);
+        fmt::print("belt speed v'          = {:g} m/s (eq. 6 limit {:.4g} m/s, margin {:.1f}x)\n", c.wedge.v,
+                   belt_speed_limit(c), belt_speed_limit(c) / c.wedge.v);
+        fmt::print("steps to S = {:g}       = {:.3g} ({:.3g} disc-steps)\n", c.wedge.s_max, steps,
+                   steps * static_cast<double>(n) * 0.8);
+        fmt::print("estimated run time     = {:.0f} s at 1.5e7 disc-steps/s (plus settling if not cached)\n",
+                   steps * static_cast<double>(n) * 0.8 / 1.5e7);
+    }
     fmt::print("packing cache          = {}\n", packing_cache_path(c));
     return 0;
+}
+
+/// Progress on a terminal only: one rewritten line.
+class Progress {
+public:
+    Progress() : tty_(::isatty(STDOUT_FILENO) != 0), t0_(std::chrono::steady_clock::now()) {}
+    double elapsed() const {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+    }
+    template <class... T>
+    void show(fmt::format_string<T...> f, T&&... args) {
+        if (!tty_) return;
+        fmt::print("\r{}   ", fmt::format(f, std::forward<T>(args)...));
+        std::fflush(stdout);
+    }
+    void done() {
+        if (tty_) fmt::print("\n");
+    }
+
+private:
+    bool tty_;
+    std::chrono::steady_clock::time_point t0_;
+};
+
+/// The settled layer of c: from the cache when present, else settled now
+/// (series rows of the settling go to `series` when given) and cached.
+ParticleStore prepare_layer(const Config& c, LineFile& log, LineFile* series) {
+    const std::string cache = packing_cache_path(c);
+    std::string why;
+    if (auto cached = load_packing(cache, packing_key(c), c.material.density, &why)) {
+        log.line(fmt::format("packing reused from {} ({} discs)", cache, cached->size()));
+        fmt::print("packing reused from {}\n", cache);
+        return std::move(*cached);
+    }
+    log.line(fmt::format("settling a new packing ({})", why));
+    Simulation sim = make_settle_simulation(c);
+    sim.initialize();
+    log.line(fmt::format("generated {} discs ({}); settling", sim.particles.size(), c.packing.kind));
+    if (series) series->line("step,time,kinetic_energy,ke_ratio,contacts,max_overlap_ratio");
+    Progress progress;
+    const SettleProgress done = settle(sim, c.packing, c.run.output_interval, [&](const SettleProgress& s) {
+        if (series)
+            series->line(fmt::format("{},{:.9g},{:.9g},{:.6g},{},{:.6g}", s.step, s.time, s.kinetic_energy,
+                                     s.ke_ratio, s.contacts, sim.max_overlap_ratio()));
+        progress.show("settling {} discs: t = {:.3f} s, step {}, E_kin/(M g h0) = {:.2e} (target {:.1e})",
+                      sim.particles.size(), s.time, s.step, s.ke_ratio, c.packing.settle_ke_ratio);
+    });
+    progress.done();
+    const double secs = progress.elapsed();
+    log.line(fmt::format("settled after {} steps ({:.4g} s simulated, {:.1f} s wall, {:.3g} disc-steps/s); "
+                         "E_kin/(M g h0) = {:.3g}, max overlap/R = {:.4f}",
+                         done.step, done.time, secs,
+                         static_cast<double>(done.step) * static_cast<double>(sim.particles.size()) / secs,
+                         done.ke_ratio, sim.max_overlap_ratio()));
+    cut_layer(sim.particles, c.packing.h0);
+    save_packing(cache, sim.particles, packing_key(c));
+    log.line(fmt::format("cut to h0 = {:g} m: {} discs; cached in {}", c.packing.h0, sim.particles.size(), cache));
+    return std::move(sim.particles);
+}
+
+std::string series_header() {
+    return "step,time,S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,kinetic_energy,contacts,"
+           "max_overlap_ratio,toe_pro_x_over_h0,toe_retro_x_over_h0,base_traction,discs_on_base,"
+           "discs_sliding_on_base,fixed_discs";
+}
+
+/// Runs a wedge experiment from the layer; writes series rows and log lines.
+void run_wedge(const Config& c, const ParticleStore& layer, const std::string& dir, LineFile& log) {
+    WedgeSetup w = make_wedge(c, layer);
+    Simulation& sim = w.sim;
+    sim.initialize();
+    const double h0 = c.packing.h0;
+    log.line(fmt::format("{}: {} discs, incoming plate {:.4g} h0, retroside {:.4g} h0, undeformed surface "
+                         "y_mean = {:.4g} m, v = {:g} m/s",
+                         c.run.experiment, sim.particles.size(), w.pro_length / h0, w.retro_length / h0,
+                         w.profile.y_mean, c.wedge.v));
+    LineFile series(dir + "/series.csv");
+    series.line(series_header());
+    const double dt = sim.params.dt;
+    const auto steps_per_output =
+        std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(c.wedge.output_ds * h0 / (c.wedge.v * dt))));
+    const auto total_steps = static_cast<std::uint64_t>(std::llround(c.wedge.s_max * h0 / (c.wedge.v * dt)));
+    Progress progress;
+    auto write_row = [&]() {
+        const double S = c.wedge.v * sim.time / h0;
+        const double ke = sim.kinetic_energy();
+        if (!std::isfinite(ke))
+            throw InstabilityError(fmt::format("non-finite kinetic energy at step {} (S = {:.3f}); reduce "
+                                               "numerics.safety or wedge.v", sim.step_count, S));
+        const WedgeMeasures m = measure_wedge(sim.particles, w.profile, c.wedge.v * sim.time);
+        const std::size_t fixed = w.fixed_retro ? w.fixed_retro->fixed_count() : 0;
+        series.line(fmt::format("{},{:.9g},{:.6f},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.9g},{},{:.6g},{:.6g},{:.6g},"
+                                "{:.6g},{},{},{}",
+                                sim.step_count, sim.time, S, m.H_over_h0, m.alpha_deg, m.beta_deg,
+                                m.peak_dx_over_h0, m.dilation_pct, ke, sim.touching_contacts(),
+                                sim.max_overlap_ratio(), m.toe_pro_x / h0, m.toe_retro_x / h0,
+                                w.base->total_traction(), w.base->discs_on_base(), w.base->discs_sliding(), fixed));
+        const double secs = progress.elapsed();
+        const double rate = static_cast<double>(sim.step_count) / std::max(secs, 1e-9);
+        log.line(fmt::format("S = {:.3f}: H/h0 = {:.3f}, alpha = {:.2f}, beta = {:.2f}, max overlap/R = {:.4f}, "
+                             "{:.0f} steps/s",
+                             S, m.H_over_h0, m.alpha_deg, m.beta_deg, sim.max_overlap_ratio(), rate));
+        progress.show("S = {:.3f} / {:g}, {:.0f} steps/s, {:.0f} s left", S, c.wedge.s_max, rate,
+                      static_cast<double>(total_steps - std::min(total_steps, sim.step_count)) / std::max(rate, 1e-9));
+    };
+    write_row();
+    while (sim.step_count < total_steps) {
+        sim.advance(std::min(steps_per_output, total_steps - sim.step_count));
+        write_row();
+    }
+    progress.done();
+    log.line(fmt::format("finished: S = {:.3f} after {} steps, {:.1f} s wall", c.wedge.v * sim.time / h0,
+                         sim.step_count, progress.elapsed()));
 }
 
 int cmd_run(const CommonArgs& a, const std::string& out_arg) {
     const Config c = load(a);
     const TimestepInfo t = timestep_for(c);
+    if (is_wedge(c)) check_belt_speed(c);
     set_threads(c);
     const std::string dir = choose_run_dir(out_arg, c.path);
     make_dirs(dir);
     write_file_atomic(dir + "/config.toml", to_toml(c));
     LineFile log(dir + "/log.txt");
-    const bool tty = ::isatty(STDOUT_FILENO);
-    log.line(fmt::format("orodem {} run of {} with {} threads", ORODEM_VERSION, c.path, omp_get_max_threads()));
+    log.line(fmt::format("orodem {} run of {} ({}) with {} threads", ORODEM_VERSION, c.path, c.run.experiment,
+                         omp_get_max_threads()));
     log.line(fmt::format("dt = {:.6g} s, stability limit {:.6g} s (margin {:.2f}x), t_c = {:.1f} steps",
                          t.dt, t.dt_crit, t.margin(), t.t_collision / t.dt));
-
-    const std::string cache = packing_cache_path(c);
-    std::string why;
-    auto cached = load_packing(cache, packing_key(c), c.material.density, &why);
-    if (cached) {
-        log.line(fmt::format("packing reused from {} ({} discs)", cache, cached->size()));
-        fmt::print("packing reused from {}\n", cache);
-    } else {
-        log.line(fmt::format("settling a new packing ({})", why));
-        Simulation sim = make_settle_simulation(c);
-        sim.initialize();
-        log.line(fmt::format("generated {} discs; settling", sim.particles.size()));
+    if (!is_wedge(c)) {
         LineFile series(dir + "/series.csv");
-        series.line("step,time,kinetic_energy,ke_ratio,contacts,max_overlap_ratio");
-        const auto t0 = std::chrono::steady_clock::now();
-        const SettleProgress done = settle(sim, c.packing, c.run.output_interval, [&](const SettleProgress& s) {
-            series.line(fmt::format("{},{:.9g},{:.9g},{:.6g},{},{:.6g}", s.step, s.time, s.kinetic_energy,
-                                    s.ke_ratio, s.contacts, sim.max_overlap_ratio()));
-            if (tty) {
-                const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-                fmt::print("\rsettling: t = {:.3f} s, step {}, E_kin/(M g h0) = {:.2e} (target {:.1e}), {:.0f} steps/s   ",
-                           s.time, s.step, s.ke_ratio, c.packing.settle_ke_ratio, double(s.step) / std::max(secs, 1e-9));
-                std::fflush(stdout);
-            }
-        });
-        if (tty) fmt::print("\n");
-        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        log.line(fmt::format("settled after {} steps ({:.4g} s simulated, {:.1f} s wall, {:.3g} disc-steps/s); "
-                             "E_kin/(M g h0) = {:.3g}, max overlap/R = {:.4f}",
-                             done.step, done.time, secs, double(done.step) * double(sim.particles.size()) / secs,
-                             done.ke_ratio, sim.max_overlap_ratio()));
-        cut_layer(sim.particles, c.packing.h0);
-        save_packing(cache, sim.particles, packing_key(c));
-        log.line(fmt::format("cut to h0 = {:g} m: {} discs; saved to {}", c.packing.h0, sim.particles.size(), cache));
-        cached = std::move(sim.particles);
+        const ParticleStore layer = prepare_layer(c, log, &series);
+        save_packing(dir + "/packing.bin", layer, packing_key(c));
+        const double surface = mean_surface_height(layer, 0.0, c.packing.length, 2.0 * c.packing.r_max);
+        log.line(fmt::format("layer: {} discs, mean surface height {:.4g} m (h0 = {:g} m)", layer.size(), surface,
+                             c.packing.h0));
+        fmt::print("layer of {} discs ready, mean surface {:.3g} m\n", layer.size(), surface);
+        fmt::print("outputs in {}/ (config.toml, log.txt, series.csv, packing.bin)\n", dir);
+        return 0;
     }
-    save_packing(dir + "/packing.bin", *cached, packing_key(c));
-    const double surface = mean_surface_height(*cached, 0.0, c.packing.length, 2.0 * c.packing.r_max);
-    log.line(fmt::format("layer: {} discs, mean surface height {:.4g} m (h0 = {:g} m)", cached->size(), surface, c.packing.h0));
-    fmt::print("layer of {} discs ready, mean surface {:.3g} m\n", cached->size(), surface);
-    fmt::print("outputs in {}/ (config.toml, log.txt, series.csv, packing.bin)\n", dir);
+    const ParticleStore layer = prepare_layer(c, log, nullptr);
+    run_wedge(c, layer, dir, log);
+    fmt::print("outputs in {}/ (config.toml, log.txt, series.csv)\n", dir);
+    return 0;
+}
+
+/// Splits "key=v1,v2,..." into the key and its values.
+std::pair<std::string, std::vector<std::string>> parse_vary(const std::string& text) {
+    const auto eq = text.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+        throw ConfigError(fmt::format("--vary '{}': expected key=v1,v2,..., e.g. --vary wedge.mu_bp=0.1,0.2,0.3", text));
+    std::vector<std::string> values;
+    std::string rest = text.substr(eq + 1);
+    for (std::size_t pos = 0;;) {
+        const auto comma = rest.find(',', pos);
+        values.push_back(rest.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
+        if (comma == std::string::npos) break;
+        pos = comma + 1;
+    }
+    for (const auto& v : values)
+        if (v.empty()) throw ConfigError(fmt::format("--vary '{}': empty value in the list", text));
+    return {text.substr(0, eq), values};
+}
+
+int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg) {
+    const auto [key, values] = parse_vary(vary);
+    // Validate every member of the sweep before running any.
+    for (const auto& v : values) {
+        CommonArgs one = a;
+        one.sets.push_back(key + "=" + v);
+        const Config c = load(one);
+        timestep_for(c);
+        if (is_wedge(c)) check_belt_speed(c);
+    }
+    const std::string stem = fs::path(a.config).stem().string();
+    const std::string root = out_arg.empty() ? choose_run_dir("", stem + "-sweep") : out_arg;
+    if (!out_arg.empty() && fs::exists(root) && !fs::is_empty(root))
+        throw ConfigError(fmt::format("--out {}: directory exists and is not empty; choose a new directory", root));
+    make_dirs(root);
+    for (const auto& v : values) {
+        CommonArgs one = a;
+        one.sets.push_back(key + "=" + v);
+        const std::string dir = fmt::format("{}/{}={}", root, key, v);
+        fmt::print("sweep: {} = {} -> {}\n", key, v, dir);
+        const int rc = cmd_run(one, dir);
+        if (rc != 0) return rc;
+    }
+    fmt::print("sweep outputs in {}/\n", root);
     return 0;
 }
 
@@ -185,6 +331,15 @@ int main(int argc, char** argv) {
     check->add_option("config", check_args.config, "TOML config file")->required();
     check->add_option("--set", check_args.sets, "Override a config value")->take_all();
 
+    CommonArgs sweep_args;
+    std::string sweep_vary, sweep_out;
+    auto* sweep = app.add_subcommand("sweep", "One run per value of a config key, into DIR/<key>=<value>/");
+    sweep->add_option("config", sweep_args.config, "TOML config file")->required();
+    sweep->add_option("--vary", sweep_vary, "key=v1,v2,..., e.g. wedge.mu_bp=0.1,0.2,0.3")->required();
+    sweep->add_option("--out", sweep_out, "Output directory (new or empty); default runs/<config name>-sweep");
+    sweep->add_option("--set", sweep_args.sets, "Override a config value")->take_all();
+    sweep->add_option("--threads", sweep_args.threads, "OpenMP threads (0 = all cores)");
+
     auto* bench = app.add_subcommand("bench", "Performance benchmarks");
     bench->require_subcommand(1);
     auto* pile = bench->add_subcommand("pile", "The canonical 30,000-disc pile of ../shared/bench (checks the LAMMPS reference)");
@@ -204,6 +359,7 @@ int main(int argc, char** argv) {
     try {
         if (*run) return cmd_run(run_args, out);
         if (*check) return cmd_check(check_args);
+        if (*sweep) return cmd_sweep(sweep_args, sweep_vary, sweep_out);
         if (*pile) return cmd_bench_pile(pile_file, pile_steps, pile_threads);
     } catch (const ConfigError& e) {
         fmt::print(stderr, "orodem: error: {}\n", e.what());

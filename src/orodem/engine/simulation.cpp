@@ -125,9 +125,11 @@ void Simulation::compute_forces() {
         }
         for (std::uint32_t k = ws.begin[i]; k < ws.begin[i + 1]; ++k) {
             const Wall& w = walls[ws.wall[k]];
-            const Vec2 d = p.x[i] - closest_point(w, p.x[i]);
+            Vec2 cp;
+            const bool over = wall_contact_point(w, p.x[i], cp);
+            const Vec2 d = p.x[i] - cp;
             const double r2 = norm2(d);
-            if (r2 >= ri * ri) {
+            if (!over || r2 >= ri * ri) {
                 ws.xi[k] = {};
                 ws.f[k] = {};
                 ws.c[k] = 0.0;
@@ -221,7 +223,9 @@ EnergyReport Simulation::energies() const {
     const WallContactStore& ws = wall_contacts;
     for (std::size_t i = 0; i < p.size(); ++i)
         for (std::uint32_t k = ws.begin[i]; k < ws.begin[i + 1]; ++k) {
-            const double delta = p.radius[i] - norm(p.x[i] - closest_point(walls[ws.wall[k]], p.x[i]));
+            Vec2 cp;
+            if (!wall_contact_point(walls[ws.wall[k]], p.x[i], cp)) continue;
+            const double delta = p.radius[i] - norm(p.x[i] - cp);
             if (delta > 0.0)
                 elastic += 0.5 * law.k_n * delta * delta + 0.5 * wall_law_[ws.wall[k]].k_s * norm2(ws.xi[k]);
         }

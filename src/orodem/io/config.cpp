@@ -222,20 +222,43 @@ Config read(const toml::table& root, const std::string& file) {
 
     // Top level: only known sections.
     for (auto&& [k, v] : root) {
-        static const std::set<std::string> known = {"run", "material", "packing", "numerics"};
+        static const std::set<std::string> known = {"run", "wedge", "material", "packing", "numerics"};
         if (!known.count(std::string(k.str())))
-            throw ConfigError(fmt::format("{}: unknown key '{}' = {}; allowed top-level tables: run, material, packing, numerics",
+            throw ConfigError(fmt::format("{}: unknown key '{}' = {}; allowed top-level tables: run, wedge, material, packing, numerics",
                                           where(file, k.source()), k.str(), show(v)));
     }
 
     {
         auto [in, o] = section("run");
         Reader r(in, "run.", file, *o, none);
-        c.run.experiment = r.choice("experiment", c.run.experiment, {"settle"}, true);
+        c.run.experiment = r.choice("experiment", c.run.experiment,
+                                    {"settle", "critical-wedge", "exp1", "exp2", "exp3"}, true);
         c.run.seed = static_cast<std::uint64_t>(r.integer("seed", static_cast<std::int64_t>(c.run.seed), 0, std::numeric_limits<std::int64_t>::max()));
         c.run.threads = static_cast<int>(r.integer("threads", c.run.threads, 0, 1024));
         c.run.output_interval = r.number("output_interval", c.run.output_interval, positive());
         r.finish();
+    }
+    if (is_wedge(c)) {
+        auto [in, o] = section("wedge");
+        Reader r(in, "wedge.", file, *o, none);
+        WedgeConfig& w = c.wedge;
+        w.v = r.number("v", w.v, positive());
+        w.s_max = r.number("s_max", w.s_max, {0.0, 100.0, true, false});
+        w.output_ds = r.number("output_ds", w.output_ds, {0.0, w.s_max, true, false});
+        w.mu_bp = r.number("mu_bp", w.mu_bp, closed(0.0, 10.0));
+        if (c.run.experiment == "exp3")
+            w.mu_br_over_mu_bp = r.number("mu_br_over_mu_bp", w.mu_br_over_mu_bp, closed(0.0, 1000.0));
+        w.traction_damping_ratio = r.number("traction_damping_ratio", w.traction_damping_ratio, {0.0, 2.0, true, false});
+        w.pro_margin = r.number("pro_margin", w.pro_margin, {2.0, 1000.0, false, false});
+        if (c.run.experiment != "critical-wedge")
+            w.retro_length = r.number("retro_length", w.retro_length, {1.0, 1000.0, false, false});
+        w.toe_threshold = r.number("toe_threshold", w.toe_threshold, {0.0, 10.0, true, false});
+        w.column_width = r.number("column_width", w.column_width, non_negative());
+        r.finish();
+    } else if (const toml::node* n = root.get("wedge")) {
+        throw ConfigError(fmt::format("{}: table [wedge] is only read by the wedge experiments, not run.experiment = \"{}\"; "
+                                      "remove it or set run.experiment to critical-wedge, exp1, exp2 or exp3",
+                                      where(file, n->source()), c.run.experiment));
     }
     {
         auto [in, o] = section("material");
@@ -272,7 +295,18 @@ Config read(const toml::table& root, const std::string& file) {
         p.h0 = r.number("h0", p.h0, positive());
         if (p.h0 < 4.0 * p.r_max)
             r.refuse("h0", fmt::format("must be at least 4 r_max = {:g} m (two disc layers)", 4.0 * p.r_max));
-        p.length = r.number("length", p.length, positive());
+        if (is_wedge(c)) {
+            if (in && in->get("length"))
+                r.refuse("length", "is derived by the wedge experiments from wedge.s_max, wedge.pro_margin and "
+                                   "wedge.retro_length; remove it");
+            // Incoming plate long enough to reach s_max, plus the retroside cover.
+            const WedgeConfig& w = c.wedge;
+            const double retro = c.run.experiment == "critical-wedge" ? 0.0 : w.retro_length;
+            p.length = (w.s_max + w.pro_margin + retro) * p.h0;
+            o->insert_or_assign("length", p.length);
+        } else {
+            p.length = r.number("length", p.length, positive());
+        }
         if (p.length < 8.0 * p.r_max)
             r.refuse("length", fmt::format("must be at least 8 r_max = {:g} m", 8.0 * p.r_max));
         const std::int64_t seed = r.integer("seed", 0, 0, std::numeric_limits<std::int64_t>::max());
@@ -296,6 +330,10 @@ Config read(const toml::table& root, const std::string& file) {
         o->insert_or_assign("skin", n.skin);
         n.gravity = r.number("gravity", n.gravity, non_negative());
         r.finish();
+    }
+    if (is_wedge(c) && c.wedge.column_width == 0.0) {
+        c.wedge.column_width = 2.0 * c.packing.r_max;
+        out.get("wedge")->as_table()->insert_or_assign("column_width", c.wedge.column_width);
     }
     return c;
 }

@@ -16,16 +16,30 @@
 namespace orodem {
 
 struct RunConfig {
-    std::string experiment = "settle";  // required: what `orodem run` does: "settle" (prepare a layer)
+    std::string experiment = "settle";  // required: settle | critical-wedge | exp1 | exp2 | exp3
     std::uint64_t seed = 1;             // master seed; packing.seed defaults to it [-]
     int threads = 0;                    // OpenMP threads, 0 = all cores [-]
     double output_interval = 0.05;      // settle: simulated time between series rows [s]
 };
 
+/// The wedge experiments (SPEC §2). Lengths in units of h0 where noted.
+struct WedgeConfig {
+    double v = 0.1;                   // convergence (belt) speed v' [m/s]
+    double s_max = 3.0;               // stop at normalised convergence S = v t / h0 [-]
+    double output_ds = 0.25;          // ΔS between outputs (series rows) [-]
+    double mu_bp = 0.3;               // proside basal friction μ_bp [-]
+    double mu_br_over_mu_bp = 2.0;    // exp3: retroside basal friction μ_br / μ_bp [-]
+    double traction_damping_ratio = 1.0;  // ζ_b in γ_b = 2 ζ_b sqrt(m_i k_n), eq. 5 [-]
+    double pro_margin = 10.0;         // incoming plate beyond s_max·h0 [h0]
+    double retro_length = 8.0;        // retroside layer length [h0] (not for critical-wedge)
+    double toe_threshold = 0.1;       // rise above the undeformed surface marking a toe [h0]
+    double column_width = 0.0;        // surface column width δx [m]; 0 = 2 r_max
+};
+
 struct MaterialConfig {
     double density = 2500.0;          // ρ, disc mass m = ρ π R² per unit depth [kg/m³]
     double k_n = 1.0e8;               // normal spring stiffness [N/m]
-    double k_s_over_k_n = 1.0;        // k_s / k_n [-]
+    double k_s_over_k_n = 1.0 / 3.0;  // k_s / k_n [-]; 1/3 keeps the tangential-rotational mode (3 k_s) no stiffer than k_n
     double mu = 0.3;                  // μ_i = tan φ_i, disc-disc Coulomb coefficient [-]
     double cohesion = 0.0;            // C in F_max = μ F_n + C [N]
     std::string damping_kind = "restitution";  // restitution | ratio | coefficient
@@ -38,7 +52,7 @@ struct PackingConfig {
     std::string kind = "clusters";    // hexagonal | discs | clusters ([33]-[37])
     double r_min = 0.5;               // smallest disc radius [m]
     double r_max = 1.0;               // largest disc radius [m] (hexagonal uses r_max)
-    double length = 100.0;            // layer length L [m]
+    double length = 100.0;            // layer length L [m] (settle only; wedge experiments derive it)
     double h0 = 10.0;                 // mean layer thickness after the cut [m]
     std::uint64_t seed = 0;           // packing seed; 0 = run.seed [-]
     double settle_ke_ratio = 1.0e-6;  // settled when E_kin < ratio · m_total g h0 [-]
@@ -58,11 +72,15 @@ struct NumericsConfig {
 struct Config {
     std::string path;                 // file it came from
     RunConfig run;
+    WedgeConfig wedge;
     MaterialConfig material;
     PackingConfig packing;
     NumericsConfig numerics;
     toml::table resolved;             // every key with its final value
 };
+
+/// True for the wedge experiments (everything but "settle").
+inline bool is_wedge(const Config& c) { return c.run.experiment != "settle"; }
 
 /// One `--set key=value` override; value is TOML syntax (1.5, true, "clusters").
 using Override = std::pair<std::string, std::string>;

@@ -15,6 +15,17 @@ Vec2 closest_point(const Wall& w, Vec2 q) {
     return w.a + t * d;
 }
 
+bool wall_contact_point(const Wall& w, Vec2 q, Vec2& cp) {
+    const Vec2 d = w.b - w.a;
+    double t = dot(q - w.a, d) / norm2(d);
+    if (!w.infinite) {
+        if (w.open_ends && (t < 0.0 || t > 1.0)) return false;
+        t = std::clamp(t, 0.0, 1.0);
+    }
+    cp = w.a + t * d;
+    return true;
+}
+
 namespace {
 
 constexpr int kStencil[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};
@@ -131,7 +142,12 @@ void PairBuilder::build_pairs(const ParticleStore& p, const BondTopology& bonds,
             if (jy >= ny) continue;
             int shift = 0;
             if (jx < 0 || jx >= nx) {
-                if (!s.periodic_x || nx < 3) continue;
+                // Any nx >= 1 wraps: with nx = 1 or 2 the same cell pair is
+                // visited under different images (shift -1, 0, +1), and only
+                // one image can be within the cut-off while W >= 2 (2 r_max +
+                // skin). Skipping nx < 3 (as before) lost every pair across
+                // the seam when far-flung discs enlarged the cells.
+                if (!s.periodic_x) continue;
                 shift = jx < 0 ? -1 : 1;
                 jx = jx < 0 ? jx + nx : jx - nx;
             }
@@ -184,7 +200,17 @@ void PairBuilder::build_wall_pairs(const ParticleStore& p, const std::vector<Wal
     const std::size_t n = p.size();
     auto visit = [&](std::size_t i, auto&& emit) {
         for (std::size_t k = 0; k < walls.size(); ++k) {
-            const Vec2 d = p.x[i] - closest_point(walls[k], p.x[i]);
+            Vec2 cp;
+            if (!wall_contact_point(walls[k], p.x[i], cp)) {
+                // An open end: the disc may still move over the segment before
+                // the next rebuild, so keep it as a candidate when within the skin.
+                const Wall& wk = walls[k];
+                const double len = norm(wk.b - wk.a);
+                const double t = dot(p.x[i] - wk.a, wk.b - wk.a) / len;  // [m] along the wall
+                if (t < -s.skin || t > len + s.skin) continue;
+                cp = closest_point(wk, p.x[i]);
+            }
+            const Vec2 d = p.x[i] - cp;
             const double cut = p.radius[i] + s.skin;
             if (norm2(d) < cut * cut) emit(k);
         }

@@ -67,5 +67,8 @@ private:
 
 /// Closest point of wall w to point q.
 Vec2 closest_point(const Wall& w, Vec2 q);
+/// Sets cp to the closest point of w to q; false when w has open ends and q
+/// projects outside the segment (no contact possible).
+bool wall_contact_point(const Wall& w, Vec2 q, Vec2& cp);
 
 }  // namespace orodem

@@ -27,7 +27,7 @@ TimestepInfo choose_timestep(double m_min, const LawParams& p, double dt_request
     if (dt_requested > 0.0) {
         if (dt_requested > t.dt_crit)
             throw ConfigError(fmt::format(
-                "timestep.dt = {:g} s is above the stability limit dt_crit = {:g} s "
+                "dt = {:g} s is above the stability limit dt_crit = {:g} s "
                 "(2 sqrt(m_min/(12 k_max)), m_min = {:g} kg, k_max = {:g} N/m); "
                 "use dt <= {:g} or dt = 0 for automatic",
                 dt_requested, t.dt_crit, m_min, k_max, t.dt_crit));

@@ -3,6 +3,10 @@
 #include <cmath>
 #include <numbers>
 
+#include <fmt/format.h>
+
+#include "orodem/core/error.hpp"
+
 #include "orodem/setup/packing.hpp"
 
 namespace orodem {
@@ -41,7 +45,12 @@ double lightest_mass(const Config& c) {
 }
 
 TimestepInfo timestep_for(const Config& c) {
-    return choose_timestep(lightest_mass(c), make_law(c.material), c.numerics.dt, c.numerics.safety);
+    try {
+        return choose_timestep(lightest_mass(c), make_law(c.material), c.numerics.dt, c.numerics.safety);
+    } catch (const ConfigError& e) {
+        // Name the config key (SPEC §5); the physics layer does not know it.
+        throw ConfigError(fmt::format("{}: key 'numerics.dt' = {:g}: {}", c.path, c.numerics.dt, e.what()));
+    }
 }
 
 Simulation make_settle_simulation(const Config& c) {

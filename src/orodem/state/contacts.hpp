@@ -53,6 +53,8 @@ struct Wall {
     bool infinite = false;    // true: the line through a and b
     bool rough = false;       // false: smooth, no tangential force
     double mu = 0.0;          // Coulomb coefficient of a rough wall [-]
+    bool open_ends = false;   // true: no end caps; only discs whose centre projects
+                              // inside [a, b] touch it (bases that meet at the S point)
 };
 
 /// Disc-wall candidate contacts, CSR by particle slot; history keyed by

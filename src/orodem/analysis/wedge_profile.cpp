@@ -1,0 +1,121 @@
+#include "orodem/analysis/wedge_profile.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace orodem {
+
+namespace {
+constexpr double kEmpty = -std::numeric_limits<double>::infinity();
+
+int column_count(const ProfileParams& pp) {
+    return std::max(1, static_cast<int>(std::ceil((pp.x_max - pp.x_min) / pp.column)));
+}
+double column_centre(const ProfileParams& pp, int c) { return pp.x_min + (c + 0.5) * pp.column; }
+}  // namespace
+
+std::vector<double> surface_profile(const ParticleStore& p, const ProfileParams& pp) {
+    const int n = column_count(pp);
+    std::vector<double> top(static_cast<std::size_t>(n), kEmpty);
+    for (std::size_t s = 0; s < p.size(); ++s) {
+        const double fc = std::floor((p.x[s].x - pp.x_min) / pp.column);
+        if (fc < 0.0 || fc >= n) continue;
+        auto& t = top[static_cast<std::size_t>(fc)];
+        t = std::max(t, p.x[s].y);
+    }
+    return top;
+}
+
+double mean_surface(const ParticleStore& p, double x0, double x1, double column) {
+    ProfileParams pp;
+    pp.x_min = x0;
+    pp.x_max = x1;
+    pp.column = column;
+    double sum = 0.0;
+    int count = 0;
+    for (double t : surface_profile(p, pp))
+        if (t != kEmpty) { sum += t; ++count; }
+    return count ? sum / count : 0.0;
+}
+
+double fit_slope(const std::vector<double>& x, const std::vector<double>& y) {
+    const std::size_t n = x.size();
+    if (n < 2) return std::numeric_limits<double>::quiet_NaN();
+    double mx = 0, my = 0;
+    for (std::size_t k = 0; k < n; ++k) { mx += x[k]; my += y[k]; }
+    mx /= static_cast<double>(n);
+    my /= static_cast<double>(n);
+    double sxy = 0, sxx = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        sxy += (x[k] - mx) * (y[k] - my);
+        sxx += (x[k] - mx) * (x[k] - mx);
+    }
+    return sxx > 0 ? sxy / sxx : std::numeric_limits<double>::quiet_NaN();
+}
+
+WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, double shortening) {
+    WedgeMeasures m;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const std::vector<double> top = surface_profile(p, pp);
+    const int n = static_cast<int>(top.size());
+    int peak = -1;
+    for (int c = 0; c < n; ++c)
+        if (top[static_cast<std::size_t>(c)] != kEmpty &&
+            (peak < 0 || top[static_cast<std::size_t>(c)] > top[static_cast<std::size_t>(peak)]))
+            peak = c;
+    if (peak < 0) return m;
+    // The highest point is the surface particle of the peak column.
+    double peak_x = column_centre(pp, peak);
+    for (std::size_t s = 0; s < p.size(); ++s)
+        if (p.x[s].y == top[static_cast<std::size_t>(peak)] && p.x[s].x >= pp.x_min + peak * pp.column &&
+            p.x[s].x < pp.x_min + (peak + 1) * pp.column)
+            peak_x = p.x[s].x;
+    m.H_over_h0 = std::max(0.0, top[static_cast<std::size_t>(peak)] - pp.y_mean) / pp.h0;
+    m.peak_dx_over_h0 = (peak_x - pp.x_s) / pp.h0;
+
+    // Smoothed surface (three-column mean of the non-empty columns).
+    std::vector<double> smooth(static_cast<std::size_t>(n), kEmpty);
+    for (int c = 0; c < n; ++c) {
+        double s = 0;
+        int k = 0;
+        for (int d = -1; d <= 1; ++d) {
+            const int cc = c + d;
+            if (cc >= 0 && cc < n && top[static_cast<std::size_t>(cc)] != kEmpty) {
+                s += top[static_cast<std::size_t>(cc)];
+                ++k;
+            }
+        }
+        if (k) smooth[static_cast<std::size_t>(c)] = s / k;
+    }
+    const double level = pp.y_mean + pp.toe_threshold;
+    auto above = [&](int c) { return smooth[static_cast<std::size_t>(c)] != kEmpty && smooth[static_cast<std::size_t>(c)] > level; };
+    int toe_pro = peak, toe_retro = peak;
+    while (toe_pro - 1 >= 0 && above(toe_pro - 1)) --toe_pro;
+    while (toe_retro + 1 < n && above(toe_retro + 1)) ++toe_retro;
+    m.toe_pro_x = column_centre(pp, toe_pro);
+    m.toe_retro_x = column_centre(pp, toe_retro);
+
+    auto taper = [&](int a, int b) {
+        std::vector<double> xs, ys;
+        for (int c = a; c <= b; ++c)
+            if (top[static_cast<std::size_t>(c)] != kEmpty) {
+                xs.push_back(column_centre(pp, c));
+                ys.push_back(top[static_cast<std::size_t>(c)]);
+            }
+        if (xs.size() < 3) return nan;
+        return std::atan(fit_slope(xs, ys)) * 180.0 / std::numbers::pi;
+    };
+    m.alpha_deg = toe_pro < peak ? taper(toe_pro, peak) : nan;
+    m.beta_deg = (pp.retro_side && toe_retro > peak) ? -taper(peak, toe_retro) : nan;
+
+    double area = 0.0;
+    for (int c = toe_pro; c <= toe_retro; ++c)
+        if (top[static_cast<std::size_t>(c)] != kEmpty) area += pp.column * (top[static_cast<std::size_t>(c)] - pp.y_mean);
+    m.wedge_area = area;
+    m.dilation_pct = shortening > 0.0 ? 100.0 * area / (shortening * pp.h0) : nan;
+    return m;
+}
+
+}  // namespace orodem

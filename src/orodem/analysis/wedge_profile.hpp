@@ -1,0 +1,57 @@
+// Wedge measurements from the surface profile (SPEC §3, [39], [44]).
+// Read-only over the particle state.
+//
+// Surface: the domain [x_min, x_max) is cut into columns of width δx; a
+// column's surface particle is its highest disc centre (y_i). y_mean is the
+// undeformed surface height, measured once on the incoming layer.
+// Peak: the column with the highest surface. Toes: walking outward from the
+// peak, the last column of the contiguous run whose surface (smoothed over
+// three columns) stays above y_mean + toe_threshold. α (prowedge, x < peak)
+// and β (retrowedge, x > peak): least-squares lines through the surface
+// centroids from each toe to the peak, in degrees (α = atan slope,
+// β = −atan slope). H = (highest disc top − y_mean), peak deviation = x of
+// the highest point − x_S, both / h0. Dilation D = 100 A_w / A_s with
+// A_w = δx Σ (y_surface − y_mean) between the toes and A_s = shortening · h0.
+#pragma once
+
+#include <vector>
+
+#include "orodem/state/particles.hpp"
+
+namespace orodem {
+
+struct ProfileParams {
+    double x_min = 0.0;          // left end of the measured range [m]
+    double x_max = 0.0;          // right end [m]
+    double column = 1.0;         // δx [m]
+    double y_mean = 0.0;         // undeformed surface (surface-centre height) [m]
+    double toe_threshold = 0.0;  // rise above y_mean that marks the wedge [m]
+    double h0 = 1.0;             // [m]
+    double x_s = 0.0;            // S point [m]
+    bool retro_side = true;      // false: singly vergent (backstop), β not measured
+};
+
+struct WedgeMeasures {
+    double H_over_h0 = 0.0;        // wedge height above y_mean / h0
+    double alpha_deg = 0.0;        // prowedge taper α [deg] (NaN if no prowedge)
+    double beta_deg = 0.0;         // retrowedge taper β [deg] (NaN if none)
+    double peak_dx_over_h0 = 0.0;  // (x_peak − x_S) / h0
+    double dilation_pct = 0.0;     // 100 A_w / A_s (NaN when A_s = 0)
+    double toe_pro_x = 0.0;        // x of the prowedge toe [m]
+    double toe_retro_x = 0.0;      // x of the retrowedge toe [m]
+    double wedge_area = 0.0;       // A_w [m²]
+};
+
+/// Per-column surface heights (highest disc centre; -inf for an empty column).
+std::vector<double> surface_profile(const ParticleStore& p, const ProfileParams& pp);
+
+/// Mean of the non-empty columns' surface heights over [x0, x1).
+double mean_surface(const ParticleStore& p, double x0, double x1, double column);
+
+/// shortening: the convergence v t so far [m].
+WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, double shortening);
+
+/// Least-squares slope of y on x.
+double fit_slope(const std::vector<double>& x, const std::vector<double>& y);
+
+}  // namespace orodem

@@ -1,0 +1,52 @@
+#include "orodem/boundary/conveyor_traction.hpp"
+
+#include <cmath>
+
+#include "orodem/core/parallel.hpp"
+#include "orodem/engine/simulation.hpp"
+
+namespace orodem {
+
+void ConveyorTraction::add_forces(Simulation& sim) {
+    ParticleStore& p = sim.particles;
+    const WallContactStore& ws = sim.wall_contacts;
+    const Wall& w = sim.walls[wall_];
+    const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
+    const double k_n = sim.params.law.k_n;
+    const std::size_t n = p.size();
+    traction_.resize(n);  // no allocation once sized
+    capped_.resize(n);
+    const long long nn = static_cast<long long>(n);
+#pragma omp parallel for schedule(static)
+    for (long long ii = 0; ii < nn; ++ii) {
+        const std::size_t i = static_cast<std::size_t>(ii);
+        traction_[i] = 0.0;
+        capped_[i] = 0;
+        if (p.inv_mass[i] == 0.0) continue;  // fixed discs are not dragged
+        for (std::uint32_t k = ws.begin[i]; k < ws.begin[i + 1]; ++k) {
+            if (ws.wall[k] != wall_) continue;
+            // Normal force of the base on the disc: the wall force minus its
+            // tangential part (the base wall is smooth, so this is all of it).
+            const double normal = ws.f[k].x * -u.y + ws.f[k].y * u.x;
+            if (normal <= 0.0) continue;
+            const double gamma_b = 2.0 * zeta_b_ * std::sqrt(p.mass[i] * k_n);
+            double f = gamma_b * (v_belt_ - dot(p.v[i], u));
+            const double cap = mu_b_ * normal;
+            if (std::fabs(f) > cap) {
+                f = std::copysign(cap, f);
+                capped_[i] = 1;
+            }
+            traction_[i] = f;
+            p.force[i] += f * u;
+        }
+    }
+    total_traction_ = deterministic_sum(n, [&](std::size_t i) { return traction_[i]; });
+    on_base_ = 0;
+    sliding_ = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        on_base_ += traction_[i] != 0.0 ? 1 : 0;
+        sliding_ += capped_[i];
+    }
+}
+
+}  // namespace orodem

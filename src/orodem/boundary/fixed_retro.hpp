@@ -1,0 +1,25 @@
+// FixedRetroside: Experiments 1 and 2 ([42], [44]). Every disc that touches
+// the retroside base wall (positive normal force) is held fixed in space from
+// then on (ParticleStore::fix: zero velocity, zero inverse mass). Checked
+// after each step; the fixed set only grows.
+#pragma once
+
+#include <cstddef>
+
+#include "orodem/engine/boundary.hpp"
+
+namespace orodem {
+
+class FixedRetroside : public Boundary {
+public:
+    explicit FixedRetroside(std::size_t wall) : wall_(wall) {}
+    std::string_view name() const override { return "fixed-retroside"; }
+    void after_step(Simulation& sim) override;
+    std::size_t fixed_count() const { return fixed_; }
+
+private:
+    std::size_t wall_;
+    std::size_t fixed_ = 0;
+};
+
+}  // namespace orodem

@@ -1,0 +1,267 @@
+// The orodem executable as a user meets it: exit statuses, one-line errors,
+// run directories and the packing cache (SPEC §4, §5). Every test runs the
+// real binary in a fresh temporary directory.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "orodem/io/config.hpp"
+#include "orodem/setup/scenario.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+    int status = -1;  // exit status, or -1 when the process did not exit normally
+    std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+void write(const fs::path& p, const std::string& text) {
+    std::ofstream out(p, std::ios::binary);
+    out << text;
+    ASSERT_TRUE(out.good()) << p;
+}
+
+std::string quote(const std::string& s) {
+    std::string q = "'";
+    for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+    return q + "'";
+}
+
+int count_lines(const std::string& s) {
+    int n = 0;
+    for (char ch : s) n += ch == '\n';
+    return n;
+}
+
+/// Every path below dir with its size, for "nothing was written" checks.
+std::map<std::string, std::uintmax_t> listing(const fs::path& dir) {
+    std::map<std::string, std::uintmax_t> m;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        m[fs::relative(e.path(), dir).string()] = e.is_regular_file() ? e.file_size() : 0;
+    return m;
+}
+
+// A tiny layer that settles in well under a second.
+std::string tiny_config(const fs::path& cache) {
+    return "[run]\n"
+           "experiment = \"settle\"\n"
+           "[packing]\n"
+           "kind = \"discs\"\n"
+           "length = 20\n"
+           "h0 = 4\n"
+           "r_min = 0.5\n"
+           "r_max = 1.0\n"
+           "cache_dir = " + quote(cache.string()) + "\n";
+}
+
+const char* kMisspelled =
+    "[run]\n"
+    "experiment = \"settle\"\n"
+    "[material]\n"
+    "k_nn = 1e8\n";
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        std::string tmpl = (fs::temp_directory_path() / "orodem-cli-XXXXXX").string();
+        ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
+        root_ = tmpl;
+        work_ = root_ / "work";
+        capture_ = root_ / "capture";
+        fs::create_directories(work_);
+        fs::create_directories(capture_);
+    }
+    void TearDown() override {
+        std::error_code ec;
+        if (!root_.empty()) fs::remove_all(root_, ec);
+    }
+
+    /// Runs `orodem ARGS` in work_ (ARGS already shell-quoted where needed);
+    /// stdout and stderr go to files outside work_.
+    Result orodem(const std::string& args) {
+        const fs::path out = capture_ / "stdout", err = capture_ / "stderr";
+        const std::string cmd = "cd " + quote(work_.string()) + " && " + quote(ORODEM_EXE) + " " + args + " >" +
+                                quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
+        const int raw = std::system(cmd.c_str());
+        Result r;
+        r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
+        r.out = slurp(out);
+        r.err = slurp(err);
+        return r;
+    }
+
+    fs::path root_, work_, capture_;
+};
+
+#define EXPECT_HAS(text, needle) \
+    EXPECT_NE(std::string(text).find(needle), std::string::npos) << "missing \"" << (needle) << "\" in:\n" << (text)
+
+}  // namespace
+
+TEST_F(Cli, HelpListsSubcommands) {
+    const Result r = orodem("--help");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_HAS(r.out, "run");
+    EXPECT_HAS(r.out, "check");
+    EXPECT_HAS(r.out, "Subcommands");
+}
+
+TEST_F(Cli, CheckOfMisspelledKeyExitsTwoWithOneLine) {
+    write(work_ / "bad.toml", kMisspelled);
+    const auto before = listing(work_);
+    const Result r = orodem("check bad.toml");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_HAS(r.err, "'material.k_nn'");
+    EXPECT_HAS(r.err, "bad.toml:4:");
+    EXPECT_HAS(r.err, "k_n,");  // the allowed keys
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(listing(work_), before);
+}
+
+TEST_F(Cli, BadArgumentsExitTwo) {
+    write(work_ / "c.toml", tiny_config(root_ / "cache"));
+    const auto before = listing(work_);
+    EXPECT_EQ(orodem("frobnicate c.toml").status, 2);
+    EXPECT_EQ(orodem("").status, 2);
+    EXPECT_EQ(orodem("check").status, 2);
+    EXPECT_EQ(orodem("run").status, 2);
+    EXPECT_EQ(orodem("run c.toml --no-such-flag").status, 2);
+    EXPECT_EQ(orodem("run c.toml --threads many").status, 2);
+    EXPECT_EQ(orodem("check c.toml --set material.mu").status, 2);
+    const Result bad_set = orodem("check c.toml --set material.k_nn=1");
+    EXPECT_EQ(bad_set.status, 2);
+    EXPECT_EQ(count_lines(bad_set.err), 1) << bad_set.err;
+    EXPECT_HAS(bad_set.err, "material.k_nn");
+    const Result missing = orodem("check no-such-file.toml");
+    EXPECT_EQ(missing.status, 2);
+    EXPECT_HAS(missing.err, "no-such-file.toml");
+    EXPECT_EQ(listing(work_), before);
+}
+
+TEST_F(Cli, RunOfBadConfigCreatesNoRunDirectory) {
+    write(work_ / "bad.toml", kMisspelled);
+    const auto before = listing(work_);
+    Result r = orodem("run bad.toml --out out");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_HAS(r.err, "'material.k_nn'");
+    r = orodem("run bad.toml");  // default run directory runs/bad
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(listing(work_), before);
+    EXPECT_FALSE(fs::exists(work_ / "out"));
+    EXPECT_FALSE(fs::exists(work_ / "runs"));
+}
+
+TEST_F(Cli, RunWithTimestepAboveLimitExitsTwoAndWritesNothing) {
+    write(work_ / "c.toml", tiny_config(root_ / "cache"));
+    const auto before = listing(work_);
+    for (const char* cmd : {"run c.toml --out out --set numerics.dt=1.0", "check c.toml --set numerics.dt=1.0"}) {
+        const Result r = orodem(cmd);
+        EXPECT_EQ(r.status, 2) << cmd;
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        EXPECT_HAS(r.err, "numerics.dt");
+        EXPECT_HAS(r.err, "stability limit");
+    }
+    EXPECT_EQ(listing(work_), before);
+    EXPECT_FALSE(fs::exists(root_ / "cache"));
+}
+
+TEST_F(Cli, CheckOfValidConfigPrintsDtAndCountAndWritesNothing) {
+    const fs::path cache = root_ / "cache";
+    const std::string text = tiny_config(cache);
+    write(work_ / "c.toml", text);
+    const auto before = listing(work_);
+    const Result r = orodem("check c.toml");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    const orodem::Config c = orodem::parse_config(text, "c.toml");
+    const std::size_t n = orodem::generated_particle_count(c);
+    EXPECT_GT(n, 10u);
+    EXPECT_HAS(r.out, "dt");
+    EXPECT_HAS(r.out, "particles");
+    EXPECT_HAS(r.out, " " + std::to_string(n) + " ");
+    EXPECT_EQ(listing(work_), before);
+    EXPECT_FALSE(fs::exists(cache));
+}
+
+TEST_F(Cli, RunWritesRunDirectoryAndReusesPacking) {
+    const fs::path cache = root_ / "cache";
+    write(work_ / "c.toml", tiny_config(cache));
+
+    // First run: settles a new packing.
+    Result r = orodem("run c.toml --out out1 --threads 1");
+    ASSERT_EQ(r.status, 0) << r.out << r.err;
+    const fs::path d = work_ / "out1";
+    for (const char* f : {"config.toml", "log.txt", "series.csv", "packing.bin"})
+        EXPECT_TRUE(fs::is_regular_file(d / f)) << f;
+    const std::string series = slurp(d / "series.csv");
+    EXPECT_EQ(series.rfind("step,time", 0), 0u) << series.substr(0, 200);
+    EXPECT_GE(count_lines(series), 2) << "no data rows";
+    EXPECT_NE(slurp(d / "log.txt").find("settl"), std::string::npos);
+    EXPECT_FALSE(fs::exists(d / "config.toml.tmp"));
+    EXPECT_FALSE(fs::exists(d / "packing.bin.tmp"));
+
+    // The written config is the resolved one and is itself a valid config.
+    const std::string resolved = slurp(d / "config.toml");
+    const orodem::Config rc = orodem::parse_config(resolved, "config.toml");
+    EXPECT_EQ(orodem::to_toml(rc), resolved);
+    EXPECT_EQ(rc.packing.kind, "discs");
+    EXPECT_EQ(rc.packing.length, 20.0);
+    EXPECT_HAS(resolved, "k_n = ");  // a default, written out
+
+    // The same --out again: refused, the earlier run untouched.
+    const auto before = listing(work_);
+    r = orodem("run c.toml --out out1");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_HAS(r.err, "out1");
+    EXPECT_EQ(listing(work_), before);
+
+    // Another --out: the cached packing is reused, bit for bit.
+    r = orodem("run c.toml --out out2 --threads 1");
+    ASSERT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_HAS(slurp(work_ / "out2" / "log.txt"), "packing reused");
+    EXPECT_EQ(slurp(work_ / "out2" / "packing.bin"), slurp(d / "packing.bin"));
+    EXPECT_EQ(slurp(work_ / "out2" / "config.toml"), resolved);
+
+    // An empty existing directory is an acceptable --out.
+    fs::create_directories(work_ / "empty");
+    EXPECT_EQ(orodem("run c.toml --out empty --threads 1").status, 0);
+    EXPECT_TRUE(fs::is_regular_file(work_ / "empty" / "packing.bin"));
+}
+
+TEST_F(Cli, RunWithoutOutPicksAFreshDirectoryUnderRuns) {
+    write(work_ / "layer.toml", tiny_config(root_ / "cache"));
+    ASSERT_EQ(orodem("run layer.toml --threads 1").status, 0);
+    ASSERT_EQ(orodem("run layer.toml --threads 1").status, 0);
+    EXPECT_TRUE(fs::is_regular_file(work_ / "runs" / "layer" / "config.toml"));
+    EXPECT_TRUE(fs::is_regular_file(work_ / "runs" / "layer-2" / "config.toml"));
+    EXPECT_FALSE(fs::exists(work_ / "runs" / "layer-3"));
+}
+
+TEST_F(Cli, SetOverridesReachTheResolvedConfig) {
+    write(work_ / "c.toml", tiny_config(root_ / "cache"));
+    const Result r = orodem("run c.toml --out o --threads 1 --set material.mu=0.45 --set run.seed=5");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const orodem::Config c = orodem::parse_config(slurp(work_ / "o" / "config.toml"), "config.toml");
+    EXPECT_EQ(c.material.mu, 0.45);
+    EXPECT_EQ(c.run.seed, 5u);
+    EXPECT_EQ(c.packing.seed, 5u);
+    EXPECT_EQ(c.run.threads, 1);
+}

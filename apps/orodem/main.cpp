@@ -27,6 +27,9 @@
 #include "orodem/analysis/wedge_profile.hpp"
 #include "orodem/boundary/conveyor_traction.hpp"
 #include "orodem/boundary/fixed_retro.hpp"
+#include "orodem/render/particle_view.hpp"
+#include "orodem/io/vtu_writer.hpp"
+#include "orodem/analysis/rel_disp.hpp"
 
 namespace fs = std::filesystem;
 using namespace orodem;
@@ -195,10 +198,40 @@ void run_wedge(const Config& c, const ParticleStore& layer, const std::string& d
         progress.show("S = {:.3f} / {:g}, {:.0f} steps/s, {:.0f} s left", S, c.wedge.s_max, rate,
                       static_cast<double>(total_steps - std::min(total_steps, sim.step_count)) / std::max(rate, 1e-9));
     };
+    make_dirs(dir + "/figures");
+    make_dirs(dir + "/snapshots");
+    std::vector<std::pair<double, std::string>> pvd;
+    std::vector<Vec2> x_then = positions_by_id(sim.particles);
+    ViewOptions view;
+    view.x_min = w.profile.x_min;
+    view.x_max = w.profile.x_max;
+    view.y_min = 0.0;
+    view.y_max = 4.0 * h0;
+    view.h0 = h0;
+    view.band = h0 / 5.0;
+    auto draw = [&]() {
+        const double S = c.wedge.v * sim.time / h0;
+        const std::vector<double> rel = relative_displacement(sim, x_then);
+        x_then = positions_by_id(sim.particles);
+        const std::string name = fmt::format("S{:06.3f}", S);
+        write_vtu(fmt::format("{}/snapshots/{}.vtu", dir, name), sim.particles, rel);
+        pvd.emplace_back(S, fmt::format("snapshots/{}.vtu", name));
+        write_pvd(dir + "/run.pvd", pvd);
+        view.label = fmt::format("{}   S = {:.2f}   initial depth", c.run.experiment, S);
+        view.color_by = "horizons";
+        render_particles(sim.particles, nullptr, view, fmt::format("{}/figures/horizons_{}.png", dir, name));
+        if (sim.step_count > 0) {
+            view.label = fmt::format("{}   S = {:.2f}   relative displacement since the previous output", c.run.experiment, S);
+            view.color_by = "displacement";
+            render_particles(sim.particles, &rel, view, fmt::format("{}/figures/displacement_{}.png", dir, name));
+        }
+    };
     write_row();
+    draw();
     while (sim.step_count < total_steps) {
         sim.advance(std::min(steps_per_output, total_steps - sim.step_count));
         write_row();
+        draw();
     }
     progress.done();
     log.line(fmt::format("finished: S = {:.3f} after {} steps, {:.1f} s wall", c.wedge.v * sim.time / h0,

@@ -12,7 +12,7 @@ void ConveyorTraction::add_forces(Simulation& sim) {
     const WallContactStore& ws = sim.wall_contacts;
     const Wall& w = sim.walls[wall_];
     const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
-    const double k_n = sim.params.law.k_n;
+    const double gain_over_dt = gain_ / sim.params.dt;  // γ_b / m_i [1/s]
     const std::size_t n = p.size();
     traction_.resize(n);  // no allocation once sized
     capped_.resize(n);
@@ -29,7 +29,7 @@ void ConveyorTraction::add_forces(Simulation& sim) {
             // tangential part (the base wall is smooth, so this is all of it).
             const double normal = ws.f[k].x * -u.y + ws.f[k].y * u.x;
             if (normal <= 0.0) continue;
-            const double gamma_b = 2.0 * zeta_b_ * std::sqrt(p.mass[i] * k_n);
+            const double gamma_b = gain_over_dt * p.mass[i];
             double f = gamma_b * (v_belt_ - dot(p.v[i], u));
             const double cap = mu_b_ * normal;
             if (std::fabs(f) > cap) {

@@ -248,7 +248,7 @@ Config read(const toml::table& root, const std::string& file) {
         w.mu_bp = r.number("mu_bp", w.mu_bp, closed(0.0, 10.0));
         if (c.run.experiment == "exp3")
             w.mu_br_over_mu_bp = r.number("mu_br_over_mu_bp", w.mu_br_over_mu_bp, closed(0.0, 1000.0));
-        w.traction_damping_ratio = r.number("traction_damping_ratio", w.traction_damping_ratio, {0.0, 2.0, true, false});
+        w.traction_gain = r.number("traction_gain", w.traction_gain, {0.0, 1.5, true, false});
         w.pro_margin = r.number("pro_margin", w.pro_margin, {2.0, 1000.0, false, false});
         if (c.run.experiment != "critical-wedge")
             w.retro_length = r.number("retro_length", w.retro_length, {1.0, 1000.0, false, false});

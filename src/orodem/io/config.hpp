@@ -29,7 +29,7 @@ struct WedgeConfig {
     double output_ds = 0.25;          // ΔS between outputs (series rows) [-]
     double mu_bp = 0.3;               // proside basal friction μ_bp [-]
     double mu_br_over_mu_bp = 2.0;    // exp3: retroside basal friction μ_br / μ_bp [-]
-    double traction_damping_ratio = 1.0;  // ζ_b in γ_b = 2 ζ_b sqrt(m_i k_n), eq. 5 [-]
+    double traction_gain = 1.0;       // g_b in the eq. 5 traction γ_b = g_b m_i / dt [-]
     double pro_margin = 10.0;         // incoming plate beyond s_max·h0 [h0]
     double retro_length = 8.0;        // retroside layer length [h0] (not for critical-wedge)
     double toe_threshold = 0.1;       // rise above the undeformed surface marking a toe [h0]

@@ -65,7 +65,7 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer) {
     sim.walls.push_back({{x_pro, 0.0}, {x_pro, tall}, {w.v, 0.0}, 0.0, false, false, 0.0});
     if (!backstop) sim.walls.push_back({{x_retro, 0.0}, {x_retro, tall}, {}, 0.0, false, false, 0.0});
 
-    auto base = std::make_unique<ConveyorTraction>(kWallProBase, w.v, w.mu_bp, w.traction_damping_ratio);
+    auto base = std::make_unique<ConveyorTraction>(kWallProBase, w.v, w.mu_bp, w.traction_gain);
     ws.base = base.get();
     sim.boundaries.push_back(std::move(base));
     if (c.run.experiment == "exp1" || c.run.experiment == "exp2") {

@@ -1,0 +1,31 @@
+// ParaView output: one VTK UnstructuredGrid (.vtu) per snapshot, one vertex
+// cell per disc, with the point data of SPEC §4 (id, radius, velocity,
+// initial_depth, side, cluster_id, rel_disp, plus omega and fixed), and a
+// run.pvd collection carrying S as the time value. Data are raw binary
+// appended (little-endian, UInt64 headers); files are written atomically.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "orodem/state/particles.hpp"
+
+namespace orodem {
+
+/// rel_disp: per slot (may be empty: written as zeros).
+void write_vtu(const std::string& path, const ParticleStore& p, const std::vector<double>& rel_disp);
+
+/// run.pvd listing (S, file name relative to the pvd) pairs.
+void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& entries);
+
+/// Reads back the point data of a VTU written by write_vtu (for tests and
+/// `orodem render`): positions and the named scalar arrays, in file order.
+struct VtuData {
+    std::vector<Vec2> x;
+    std::vector<std::pair<std::string, std::vector<double>>> arrays;  // name -> per point (first component)
+    const std::vector<double>* find(const std::string& name) const;
+};
+VtuData read_vtu(const std::string& path);
+
+}  // namespace orodem

@@ -93,9 +93,11 @@ void Simulation::compute_forces() {
         }
         const double r = std::sqrt(r2);
         const double mi = p.mass[i], mj = p.mass[j];
+        // A fixed disc is infinitely heavy: the pair's effective mass is the
+        // free disc's own, as against a wall.
+        const double m_eff = p.inv_mass[j] == 0.0 ? mi : p.inv_mass[i] == 0.0 ? mj : mi * mj / (mi + mj);
         const PairKinematics kin{(1.0 / r) * d, rsum - r, p.v[i] - p.v[j],
-                                 p.radius[i] * p.omega[i] + p.radius[j] * p.omega[j],
-                                 mi * mj / (mi + mj)};
+                                 p.radius[i] * p.omega[i] + p.radius[j] * p.omega[j], m_eff};
         Vec2 xi = cs.xi[k];
         const PairForce pf = bonded ? eval_contact<true>(law, kin, dt, xi)
                                     : eval_contact<false>(law, kin, dt, xi);

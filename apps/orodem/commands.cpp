@@ -131,7 +131,6 @@ ParticleStore prepare_layer(const Config& c, LineFile& log, LineFile* series) {
     Simulation sim = make_settle_simulation(c);
     sim.initialize();
     log.line(fmt::format("generated {} discs ({}); settling", sim.particles.size(), c.packing.kind));
-    if (series) series->line("step,time,kinetic_energy,ke_ratio,contacts,max_overlap_ratio");
     Progress progress;
     const SettleProgress done = settle(sim, c.packing, c.run.output_interval, [&](const SettleProgress& s) {
         if (series)
@@ -255,6 +254,8 @@ int cmd_run(const CommonArgs& a, const std::string& out_arg) {
                          t.dt, t.dt_crit, t.margin(), t.t_collision / t.dt));
     if (!is_wedge(c)) {
         LineFile series(dir + "/series.csv");
+        // Header always; rows only when the layer is settled now (not cached).
+        series.line("step,time,kinetic_energy,ke_ratio,contacts,max_overlap_ratio");
         const ParticleStore layer = prepare_layer(c, log, &series);
         save_packing(dir + "/packing.bin", layer, packing_key(c));
         const double surface = mean_surface_height(layer, 0.0, c.packing.length, 2.0 * c.packing.r_max);

@@ -20,4 +20,16 @@ int cmd_run(const CommonArgs& a, const std::string& out_arg);
 int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg);
 int cmd_bench_pile(const std::string& pile, std::uint64_t steps, int threads);
 
+/// orodem plot (cmd_plot.cpp): the S plots of one or more runs into out
+/// (default RUN_DIR/figures/plots.png for one run, <common parent>/plots.png
+/// for several).
+int cmd_plot(const std::vector<std::string>& run_dirs, const std::string& out);
+
+/// orodem render (cmd_render.cpp): horizon and displacement pictures of the
+/// snapshots nearest each S of `at` (all when empty) into RUN_DIR/figures/.
+int cmd_render(const std::string& run_dir, const std::vector<double>& at, const std::string& format, int width);
+
+/// Throws ConfigError unless dir exists and holds a config.toml.
+void require_run_dir(const std::string& dir);
+
 }  // namespace orodem

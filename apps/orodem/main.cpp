@@ -35,6 +35,29 @@ int main(int argc, char** argv) {
     sweep->add_option("--set", sweep_args.sets, "Override a config value")->take_all();
     sweep->add_option("--threads", sweep_args.threads, "OpenMP threads (0 = all cores)");
 
+    std::vector<std::string> plot_dirs;
+    std::string plot_out;
+    auto* plot = app.add_subcommand("plot", "Plot alpha, beta, H/h0, peak deviation and dilation against S for one or "
+                                            "more runs, overlaid and labelled by what differs between their configs");
+    plot->add_option("run_dirs", plot_dirs, "Run directories (each with config.toml and series.csv)")->required();
+    plot->add_option("--out", plot_out, "Output file, .png, .svg or .pdf; default RUN_DIR/figures/plots.png for "
+                                        "one run, <common parent>/plots.png for several");
+
+    std::string render_dir, render_format = "png";
+    std::vector<double> render_at;
+    int render_width = 1600;
+    auto* render = app.add_subcommand("render", "Re-draw the horizon and displacement pictures of a run's saved "
+                                                "snapshots (run.pvd) into RUN_DIR/figures/");
+    render->add_option("run_dir", render_dir, "Run directory")->required();
+    render->add_option("--at", render_at, "Shortenings S, e.g. --at 1,2.5: the snapshots nearest them (default all)")
+        ->delimiter(',');
+    render->add_option("--format", render_format, "Picture format")
+        ->check(CLI::IsMember({"png", "svg", "pdf"}))
+        ->capture_default_str();
+    render->add_option("--width", render_width, "Picture width in pixels")
+        ->check(CLI::Range(200, 20000))
+        ->capture_default_str();
+
     auto* bench = app.add_subcommand("bench", "Performance benchmarks");
     bench->require_subcommand(1);
     auto* pile = bench->add_subcommand("pile", "The canonical 30,000-disc pile of ../shared/bench (checks the LAMMPS reference)");
@@ -55,6 +78,8 @@ int main(int argc, char** argv) {
         if (*run) return cmd_run(run_args, out);
         if (*check) return cmd_check(check_args);
         if (*sweep) return cmd_sweep(sweep_args, sweep_vary, sweep_out);
+        if (*plot) return cmd_plot(plot_dirs, plot_out);
+        if (*render) return cmd_render(render_dir, render_at, render_format, render_width);
         if (*pile) return cmd_bench_pile(pile_file, pile_steps, pile_threads);
     } catch (const ConfigError& e) {
         fmt::print(stderr, "orodem: error: {}\n", e.what());

@@ -17,7 +17,7 @@ void ConveyorTraction::add_forces(Simulation& sim) {
     traction_.resize(n);  // no allocation once sized
     capped_.resize(n);
     const long long nn = static_cast<long long>(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(nn >= kParallelMin)
     for (long long ii = 0; ii < nn; ++ii) {
         const std::size_t i = static_cast<std::size_t>(ii);
         traction_[i] = 0.0;

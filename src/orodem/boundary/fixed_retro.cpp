@@ -1,4 +1,5 @@
 #include "orodem/boundary/fixed_retro.hpp"
+#include "orodem/core/parallel.hpp"
 
 #include "orodem/engine/simulation.hpp"
 
@@ -9,7 +10,7 @@ void FixedRetroside::after_step(Simulation& sim) {
     const WallContactStore& ws = sim.wall_contacts;
     const long long n = static_cast<long long>(p.size());
     // Each iteration touches only its own disc.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(n >= kParallelMin)
     for (long long ii = 0; ii < n; ++ii) {
         const std::size_t i = static_cast<std::size_t>(ii);
         if (p.flags[i] & kFlagFixed) continue;

@@ -10,6 +10,11 @@ namespace orodem {
 
 inline constexpr std::size_t kChunk = 4096;
 
+/// Loops shorter than this run on one thread: for a few thousand items the
+/// cost of waking the team exceeds the work (and on a loaded machine a
+/// descheduled team member stalls everyone). Results do not depend on it.
+inline constexpr long long kParallelMin = 4096;
+
 /// Σ_{k<n} term(k), summed in fixed chunks and then in chunk order.
 template <class F>
 double deterministic_sum(std::size_t n, F&& term) {

@@ -77,7 +77,7 @@ void Simulation::compute_forces() {
 
     // Phase A: one iteration per candidate pair, writing only that pair's slots.
     const long long npairs = static_cast<long long>(cs.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(npairs >= kParallelMin)
     for (long long kk = 0; kk < npairs; ++kk) {
         const std::size_t k = static_cast<std::size_t>(kk);
         const std::uint32_t i = cs.i[k], j = cs.j[k];
@@ -110,7 +110,7 @@ void Simulation::compute_forces() {
     WallContactStore& ws = wall_contacts;
     const Vec2 g = params.gravity;
     const long long n = static_cast<long long>(p.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(n >= kParallelMin)
     for (long long ii = 0; ii < n; ++ii) {
         const std::size_t i = static_cast<std::size_t>(ii);
         const double ri = p.radius[i];
@@ -162,7 +162,7 @@ void Simulation::step() {
     const auto& x_ref = builder_.x_ref();
     double max_d2 = max_disp2_;
     const long long n = static_cast<long long>(p.size());
-#pragma omp parallel for schedule(static) reduction(max : max_d2)
+#pragma omp parallel for schedule(static) if(n >= kParallelMin) reduction(max : max_d2)
     for (long long ii = 0; ii < n; ++ii) {
         const std::size_t i = static_cast<std::size_t>(ii);
         p.v[i] += (half * p.inv_mass[i]) * p.force[i];
@@ -186,7 +186,7 @@ void Simulation::step() {
     compute_forces<true>();
     for (auto& b : boundaries) b->add_forces(*this);
 
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(n >= kParallelMin)
     for (long long ii = 0; ii < n; ++ii) {
         const std::size_t i = static_cast<std::size_t>(ii);
         p.v[i] += (half * p.inv_mass[i]) * p.force[i];

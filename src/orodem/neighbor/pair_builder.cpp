@@ -1,4 +1,5 @@
 #include "orodem/neighbor/pair_builder.hpp"
+#include "orodem/core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -158,7 +159,7 @@ void PairBuilder::build_pairs(const ParticleStore& p, const BondTopology& bonds,
 
     count_.assign(n, 0);
     const long long nn = static_cast<long long>(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(nn >= kParallelMin)
     for (long long i = 0; i < nn; ++i) {
         std::uint32_t k = 0;
         visit(static_cast<std::size_t>(i), [&](std::uint32_t, int, bool) { ++k; });
@@ -168,7 +169,7 @@ void PairBuilder::build_pairs(const ParticleStore& p, const BondTopology& bonds,
     cs.begin[0] = 0;
     for (std::size_t i = 0; i < n; ++i) cs.begin[i + 1] = cs.begin[i] + count_[i];
     cs.resize(cs.begin[n]);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(nn >= kParallelMin)
     for (long long ii = 0; ii < nn; ++ii) {
         const std::size_t i = static_cast<std::size_t>(ii);
         std::uint32_t k = cs.begin[i];
@@ -217,7 +218,7 @@ void PairBuilder::build_wall_pairs(const ParticleStore& p, const std::vector<Wal
     };
     count_.assign(n, 0);
     const long long nn = static_cast<long long>(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(nn >= kParallelMin)
     for (long long i = 0; i < nn; ++i) {
         std::uint32_t k = 0;
         visit(static_cast<std::size_t>(i), [&](std::size_t) { ++k; });
@@ -227,7 +228,7 @@ void PairBuilder::build_wall_pairs(const ParticleStore& p, const std::vector<Wal
     w.begin[0] = 0;
     for (std::size_t i = 0; i < n; ++i) w.begin[i + 1] = w.begin[i] + count_[i];
     w.resize(w.begin[n]);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(nn >= kParallelMin)
     for (long long ii = 0; ii < nn; ++ii) {
         const std::size_t i = static_cast<std::size_t>(ii);
         std::uint32_t k = w.begin[i];
@@ -255,7 +256,7 @@ void PairBuilder::rebuild(ParticleStore& p, const BondTopology& bonds,
     };
     auto restore = [&](const auto& keys, auto& xis, std::size_t count) {
         const long long m = static_cast<long long>(count);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if(m >= kParallelMin)
         for (long long k = 0; k < m; ++k) {
             const std::uint64_t key = keys[static_cast<std::size_t>(k)];
             auto it = std::lower_bound(old_hist_.begin(), old_hist_.end(), key,

@@ -1,0 +1,108 @@
+// `orodem plot RUN_DIR...`: the four panels of the wedge measurements against
+// S (SPEC §3), several runs overlaid, labelled by what differs between their
+// resolved configs.
+#include <cctype>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "orodem/core/error.hpp"
+#include "orodem/io/files.hpp"
+#include "orodem/io/series_reader.hpp"
+#include "orodem/render/plots.hpp"
+
+#include "commands.hpp"
+
+namespace fs = std::filesystem;
+namespace orodem {
+
+namespace {
+
+/// path made absolute and normal, without a trailing separator.
+fs::path normal(const std::string& p) {
+    fs::path a = fs::absolute(fs::path(p)).lexically_normal();
+    if (a.filename().empty() && a.has_parent_path()) a = a.parent_path();
+    return a;
+}
+
+/// The deepest directory holding all of dirs.
+fs::path common_parent(const std::vector<fs::path>& dirs) {
+    fs::path common = dirs.front().parent_path();
+    for (const fs::path& d : dirs) {
+        const fs::path parent = d.parent_path();
+        fs::path shared;
+        auto a = common.begin(), b = parent.begin();
+        for (; a != common.end() && b != parent.end() && *a == *b; ++a, ++b) shared /= *a;
+        common = shared;
+    }
+    return common.empty() ? fs::path("/") : common;
+}
+
+std::string experiment_of(const std::string& config_text) {
+    try {
+        const toml::table t = toml::parse(std::string_view(config_text));
+        return t["run"]["experiment"].value_or(std::string());
+    } catch (const toml::parse_error&) {
+        return {};
+    }
+}
+
+}  // namespace
+
+/// Throws ConfigError unless dir is a run directory (a directory with config.toml).
+void require_run_dir(const std::string& dir) {
+    std::error_code ec;
+    if (!fs::exists(dir, ec))
+        throw ConfigError(fmt::format("'{}': no such run directory", dir));
+    if (!fs::is_directory(dir, ec))
+        throw ConfigError(fmt::format("'{}': not a run directory (not a directory)", dir));
+    if (!fs::exists(fs::path(dir) / "config.toml", ec))
+        throw ConfigError(fmt::format("'{}': not a run directory (no config.toml)", dir));
+}
+
+int cmd_plot(const std::vector<std::string>& run_dirs, const std::string& out_arg) {
+    if (run_dirs.empty()) throw ConfigError("plot: give at least one run directory");
+    std::vector<std::string> texts, names, sources, experiments;
+    std::vector<Series> series;
+    std::vector<fs::path> absolute;
+    for (const std::string& dir : run_dirs) {
+        require_run_dir(dir);
+        const fs::path a = normal(dir);
+        absolute.push_back(a);
+        names.push_back(a.filename().string());
+        sources.push_back((fs::path(dir) / "config.toml").string());
+        texts.push_back(read_file(sources.back()));
+        experiments.push_back(experiment_of(texts.back()));
+        const fs::path csv = fs::path(dir) / "series.csv";
+        if (!fs::exists(csv)) throw IoError(fmt::format("'{}': no such file; the run wrote no series", csv.string()));
+        series.push_back(read_series_csv(csv.string()));
+    }
+    const std::vector<std::string> labels = legend_labels(texts, names, sources);
+
+    std::string out = out_arg;
+    if (out.empty())
+        out = run_dirs.size() == 1 ? (fs::path(run_dirs.front()) / "figures" / "plots.png").string()
+                                   : (common_parent(absolute) / "plots.png").string();
+    const fs::path out_path(out);
+    std::string ext = out_path.extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (ext != ".png" && ext != ".svg" && ext != ".pdf")
+        throw ConfigError(fmt::format("--out '{}': the file name must end in .png, .svg or .pdf", out));
+    if (out_path.has_parent_path()) make_dirs(out_path.parent_path().string());
+
+    PlotOptions o;
+    bool same_experiment = true;
+    for (const auto& e : experiments) same_experiment = same_experiment && e == experiments.front();
+    const std::string what = same_experiment && !experiments.front().empty() ? experiments.front() + ": " : "";
+    o.title = run_dirs.size() == 1
+                  ? fmt::format("{}{}", what, names.front())
+                  : fmt::format("{}{} runs in {}", what, run_dirs.size(), common_parent(absolute).filename().string());
+    plot_series(series, labels, out, o);
+    fmt::print("plot: {}\n", out);
+    return 0;
+}
+
+}  // namespace orodem

@@ -1,0 +1,158 @@
+#include "orodem/io/series_reader.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <map>
+#include <set>
+#include <string_view>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "orodem/core/error.hpp"
+#include "orodem/io/files.hpp"
+
+namespace orodem {
+
+namespace {
+
+std::vector<std::string_view> split(std::string_view line, char sep) {
+    std::vector<std::string_view> out;
+    for (std::size_t pos = 0;;) {
+        const auto next = line.find(sep, pos);
+        out.push_back(line.substr(pos, next == std::string_view::npos ? std::string_view::npos : next - pos));
+        if (next == std::string_view::npos) break;
+        pos = next + 1;
+    }
+    return out;
+}
+
+std::string_view trim(std::string_view s) {
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+    return s;
+}
+
+/// One field as a number; false if it is not one.
+bool parse_number(std::string_view field, double& v) {
+    field = trim(field);
+    if (field.empty()) {
+        v = std::numeric_limits<double>::quiet_NaN();
+        return true;
+    }
+    const std::string s(field);
+    char* end = nullptr;
+    v = std::strtod(s.c_str(), &end);
+    return end == s.c_str() + s.size();
+}
+
+/// A TOML value as label text: numbers in shortest form, strings unquoted.
+std::string value_text(const toml::node& n) {
+    if (auto v = n.as_floating_point()) return fmt::format("{}", v->get());
+    if (auto v = n.as_integer()) return fmt::format("{}", v->get());
+    if (auto v = n.as_boolean()) return v->get() ? "true" : "false";
+    if (auto v = n.as_string()) return v->get();
+    if (auto a = n.as_array()) {
+        std::string s = "[";
+        for (std::size_t k = 0; k < a->size(); ++k) s += (k ? ", " : "") + value_text(*a->get(k));
+        return s + "]";
+    }
+    if (auto d = n.as_date()) return fmt::format("{}-{:02}-{:02}", d->get().year, d->get().month, d->get().day);
+    return "?";
+}
+
+/// Every leaf of t as "a.b.c" -> value text.
+void flatten(const toml::table& t, const std::string& prefix, std::map<std::string, std::string>& out) {
+    for (const auto& [key, node] : t) {
+        const std::string name = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
+        if (const toml::table* sub = node.as_table()) flatten(*sub, name, out);
+        else out[name] = value_text(node);
+    }
+}
+
+}  // namespace
+
+const std::vector<double>* Series::column(const std::string& name) const {
+    for (std::size_t c = 0; c < names.size(); ++c)
+        if (names[c] == name) return &values[c];
+    return nullptr;
+}
+
+Series read_series_csv(const std::string& path) {
+    const std::string text = read_file(path);
+    Series s;
+    s.path = path;
+    std::vector<std::string_view> lines = split(text, '\n');
+    // A complete file ends with '\n' (the last piece is empty); otherwise the
+    // last line is a partial write and is dropped.
+    lines.pop_back();
+    if (lines.empty() || trim(lines.front()).empty())
+        throw IoError(fmt::format("'{}': empty file, expected a header row", path));
+    for (std::string_view name : split(lines.front(), ',')) s.names.emplace_back(trim(name));
+    s.values.resize(s.names.size());
+    for (std::size_t l = 1; l < lines.size(); ++l) {
+        if (trim(lines[l]).empty()) continue;
+        const auto fields = split(lines[l], ',');
+        if (fields.size() != s.names.size())
+            throw IoError(fmt::format("'{}': line {} has {} fields, the header has {}", path, l + 1, fields.size(),
+                                      s.names.size()));
+        for (std::size_t c = 0; c < fields.size(); ++c) {
+            double v = 0.0;
+            if (!parse_number(fields[c], v))
+                throw IoError(fmt::format("'{}': line {}, column '{}': '{}' is not a number", path, l + 1,
+                                          s.names[c], trim(fields[c])));
+            s.values[c].push_back(v);
+        }
+    }
+    return s;
+}
+
+std::vector<std::string> legend_labels(const std::vector<std::string>& config_texts,
+                                       const std::vector<std::string>& names,
+                                       const std::vector<std::string>& sources) {
+    static const std::set<std::string> kIgnored = {"run.threads", "packing.cache_dir"};
+    const std::size_t n = config_texts.size();
+    std::vector<std::map<std::string, std::string>> flat(n);
+    std::set<std::string> keys;
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::string source = i < sources.size() ? sources[i] : (i < names.size() ? names[i] : "config");
+        try {
+            flatten(toml::parse(std::string_view(config_texts[i]), std::string_view(source)), "", flat[i]);
+        } catch (const toml::parse_error& e) {
+            throw IoError(fmt::format("'{}': not readable as TOML: {} (line {})", source, e.description(),
+                                      e.source().begin.line));
+        }
+        for (const auto& [k, v] : flat[i]) keys.insert(k);
+    }
+    std::vector<std::string> differing;
+    for (const std::string& k : keys) {
+        if (kIgnored.count(k)) continue;
+        for (std::size_t i = 1; i < n; ++i) {
+            const auto a = flat[0].find(k), b = flat[i].find(k);
+            const bool same = (a == flat[0].end()) == (b == flat[i].end()) &&
+                              (a == flat[0].end() || a->second == b->second);
+            if (!same) {
+                differing.push_back(k);
+                break;
+            }
+        }
+    }
+    std::vector<std::string> labels(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        std::string& label = labels[i];
+        const std::size_t shown = std::min<std::size_t>(differing.size(), 3);
+        for (std::size_t d = 0; d < shown; ++d) {
+            const auto it = flat[i].find(differing[d]);
+            label += fmt::format("{}{} = {}", d ? ", " : "", differing[d],
+                                 it == flat[i].end() ? "(absent)" : it->second);
+        }
+        if (differing.size() > shown) label += fmt::format(", +{} more", differing.size() - shown);
+    }
+    const bool distinct = std::set<std::string>(labels.begin(), labels.end()).size() == n;
+    if (differing.empty() || !distinct)
+        for (std::size_t i = 0; i < n; ++i) labels[i] = i < names.size() ? names[i] : fmt::format("run {}", i + 1);
+    return labels;
+}
+
+}  // namespace orodem

@@ -1,0 +1,37 @@
+// Reading back what a run directory holds, for `orodem plot` and
+// `orodem render`: series.csv as named numeric columns, and legend labels
+// for several runs from the differences between their resolved config.toml.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace orodem {
+
+/// series.csv: the header's column names and one vector of values per column.
+/// "nan", "-nan" and empty fields read as NaN.
+struct Series {
+    std::string path;                         // the file it was read from
+    std::vector<std::string> names;           // header columns
+    std::vector<std::vector<double>> values;  // values[c][row]
+    std::size_t rows() const { return values.empty() ? 0 : values.front().size(); }
+    /// The column called name, or nullptr.
+    const std::vector<double>* column(const std::string& name) const;
+};
+
+/// Reads a CSV with a header row. Throws IoError naming the path when the file
+/// cannot be read or a row is malformed (a last line without its newline, as
+/// a run stopped mid-write leaves it, is skipped).
+Series read_series_csv(const std::string& path);
+
+/// Legend labels for runs whose resolved configs are `config_texts` (TOML):
+/// the keys whose values differ among the runs, "key = value" joined by ", "
+/// (at most three, then "+N more"). Keys that do not change the physics
+/// (run.threads, packing.cache_dir) are ignored. Where nothing differs, or the
+/// labels would not tell the runs apart, names[i] is used. `sources` name the
+/// texts in errors (a TOML syntax error throws IoError naming the source).
+std::vector<std::string> legend_labels(const std::vector<std::string>& config_texts,
+                                       const std::vector<std::string>& names,
+                                       const std::vector<std::string>& sources);
+
+}  // namespace orodem

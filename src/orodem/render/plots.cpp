@@ -1,0 +1,335 @@
+#include "orodem/render/plots.hpp"
+
+#include <cairo-pdf.h>
+#include <cairo-svg.h>
+#include <cairo.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "orodem/core/error.hpp"
+#include "orodem/io/files.hpp"
+
+namespace orodem {
+
+const std::vector<std::string> kPlotColumns = {"S", "alpha_deg", "beta_deg", "H_over_h0", "peak_dx_over_h0",
+                                               "dilation_pct"};
+
+namespace {
+
+struct Rgb {
+    double r, g, b;
+};
+
+// Ten well-separated line colours, cycled when there are more runs.
+constexpr Rgb kPalette[] = {{0.12, 0.47, 0.71}, {0.89, 0.10, 0.11}, {0.20, 0.63, 0.17}, {1.00, 0.50, 0.00},
+                            {0.42, 0.24, 0.60}, {0.65, 0.34, 0.16}, {0.91, 0.16, 0.54}, {0.40, 0.40, 0.40},
+                            {0.74, 0.74, 0.13}, {0.09, 0.75, 0.81}};
+
+Rgb run_color(std::size_t i) { return kPalette[i % std::size(kPalette)]; }
+
+// Layout [px].
+constexpr double kOuter = 16, kPanelLeft = 78, kPanelRight = 18, kPanelTop = 34, kPanelBottom = 52;
+constexpr double kTitleHeight = 34, kLegendRow = 24, kFont = 14;
+
+struct Range {
+    double lo = 0, hi = 1, step = 0.2;
+};
+
+/// A "nice" tick step (1, 2 or 5 × 10^k) giving about `target` intervals.
+double nice_step(double span, int target) {
+    const double raw = span / target;
+    const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+    const double f = raw / mag;
+    return (f < 1.5 ? 1.0 : f < 3.0 ? 2.0 : f < 7.0 ? 5.0 : 10.0) * mag;
+}
+
+/// Axis range covering [lo, hi] (finite, or none: lo > hi), on tick multiples.
+Range axis_range(double lo, double hi, int target) {
+    if (!(lo <= hi)) lo = 0, hi = 1;
+    if (hi - lo < 1e-12 * std::max(1.0, std::fabs(hi))) {
+        const double pad = lo == 0.0 ? 1.0 : 0.1 * std::fabs(lo);
+        lo -= pad;
+        hi += pad;
+    }
+    Range r;
+    r.step = nice_step(hi - lo, target);
+    // Data within a thousandth of a step past a tick (S = 1.000001) stays on that tick.
+    r.lo = std::floor(lo / r.step + 1e-3) * r.step;
+    r.hi = std::ceil(hi / r.step - 1e-3) * r.step;
+    return r;
+}
+
+struct Curve {
+    const std::vector<double>* x;
+    const std::vector<double>* y;
+    Rgb color;
+    bool dashed;
+};
+
+struct Panel {
+    std::string title, ylabel;
+    std::vector<Curve> curves;
+    bool taper_key = false;  // draw the "α solid, β dashed" key
+};
+
+void text_at(cairo_t* cr, const std::string& s, double x, double y, double ax, double ay) {
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, s.c_str(), &e);
+    cairo_move_to(cr, x - ax * e.x_advance, y + ay * e.height);
+    cairo_show_text(cr, s.c_str());
+}
+
+std::string tick_label(double t, double step) {
+    if (std::fabs(t) < 1e-9 * step) t = 0.0;
+    return fmt::format("{:g}", t);
+}
+
+void draw_panel(cairo_t* cr, const Panel& p, const Range& xr, double x0, double y0, double w, double h) {
+    // Data range over every finite point.
+    double lo = INFINITY, hi = -INFINITY;
+    for (const Curve& c : p.curves)
+        for (std::size_t k = 0; k < c.y->size(); ++k)
+            if (std::isfinite((*c.y)[k]) && std::isfinite((*c.x)[k])) {
+                lo = std::min(lo, (*c.y)[k]);
+                hi = std::max(hi, (*c.y)[k]);
+            }
+    const Range yr = axis_range(lo, hi, 6);
+    auto px = [&](double x) { return x0 + (x - xr.lo) / (xr.hi - xr.lo) * w; };
+    auto py = [&](double y) { return y0 + h - (y - yr.lo) / (yr.hi - yr.lo) * h; };
+
+    // Grid, zero line, ticks and tick labels.
+    cairo_set_font_size(cr, kFont - 1);
+    cairo_set_line_width(cr, 1.0);
+    for (int k = 0;; ++k) {
+        const double t = xr.lo + k * xr.step;
+        if (t > xr.hi + 1e-9 * xr.step) break;
+        cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
+        cairo_move_to(cr, px(t), y0);
+        cairo_line_to(cr, px(t), y0 + h);
+        cairo_stroke(cr);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        cairo_move_to(cr, px(t), y0 + h);
+        cairo_line_to(cr, px(t), y0 + h + 5);
+        cairo_stroke(cr);
+        text_at(cr, tick_label(t, xr.step), px(t), y0 + h + 9, 0.5, 1.0);
+    }
+    for (int k = 0;; ++k) {
+        const double t = yr.lo + k * yr.step;
+        if (t > yr.hi + 1e-9 * yr.step) break;
+        const bool zero = std::fabs(t) < 1e-9 * yr.step && yr.lo < 0 && yr.hi > 0;
+        const double g = zero ? 0.6 : 0.9;
+        cairo_set_source_rgb(cr, g, g, g);
+        cairo_move_to(cr, x0, py(t));
+        cairo_line_to(cr, x0 + w, py(t));
+        cairo_stroke(cr);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        cairo_move_to(cr, x0 - 5, py(t));
+        cairo_line_to(cr, x0, py(t));
+        cairo_stroke(cr);
+        text_at(cr, tick_label(t, yr.step), x0 - 8, py(t), 1.0, 0.5);
+    }
+
+    // Curves, clipped to the plot area; NaN breaks a line.
+    cairo_save(cr);
+    cairo_rectangle(cr, x0, y0, w, h);
+    cairo_clip(cr);
+    cairo_set_line_width(cr, 2.0);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    for (const Curve& c : p.curves) {
+        cairo_set_source_rgb(cr, c.color.r, c.color.g, c.color.b);
+        const double dash[] = {8.0, 5.0};
+        cairo_set_dash(cr, dash, c.dashed ? 2 : 0, 0.0);
+        const std::size_t n = std::min(c.x->size(), c.y->size());
+        auto ok = [&](std::size_t k) { return k < n && std::isfinite((*c.x)[k]) && std::isfinite((*c.y)[k]); };
+        for (std::size_t k = 0; k < n; ++k) {
+            if (!ok(k)) continue;
+            const bool starts = k == 0 || !ok(k - 1), ends = !ok(k + 1);
+            if (starts && ends) {  // an isolated point: a dot
+                cairo_new_sub_path(cr);
+                cairo_arc(cr, px((*c.x)[k]), py((*c.y)[k]), 3.0, 0, 2 * std::numbers::pi);
+                cairo_fill(cr);
+                continue;
+            }
+            if (starts) cairo_move_to(cr, px((*c.x)[k]), py((*c.y)[k]));
+            else cairo_line_to(cr, px((*c.x)[k]), py((*c.y)[k]));
+            if (ends) cairo_stroke(cr);
+        }
+        cairo_new_path(cr);
+    }
+    cairo_set_dash(cr, nullptr, 0, 0.0);
+    cairo_restore(cr);
+
+    // Frame, titles, axis labels.
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_line_width(cr, 1.2);
+    cairo_rectangle(cr, x0, y0, w, h);
+    cairo_stroke(cr);
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+    cairo_set_font_size(cr, kFont + 1);
+    text_at(cr, p.title, x0, y0 - 12, 0.0, 0.0);
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, kFont);
+    text_at(cr, "S (shortening / h0)", x0 + w / 2, y0 + h + 44, 0.5, 0.0);
+    cairo_save(cr);
+    cairo_translate(cr, x0 - kPanelLeft + 18, y0 + h / 2);
+    cairo_rotate(cr, -std::numbers::pi / 2);
+    text_at(cr, p.ylabel, 0, 0, 0.5, 0.0);
+    cairo_restore(cr);
+
+    if (p.taper_key) {  // which line is which angle, in black, top right
+        const double kx = x0 + w - 150, ky = y0 + 20;
+        cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
+        cairo_rectangle(cr, kx - 8, ky - 12, 150, 24);
+        cairo_fill(cr);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        cairo_set_line_width(cr, 2.0);
+        cairo_move_to(cr, kx, ky);
+        cairo_line_to(cr, kx + 28, ky);
+        cairo_stroke(cr);
+        text_at(cr, "α", kx + 33, ky, 0.0, 0.35);
+        const double dash[] = {8.0, 5.0};
+        cairo_set_dash(cr, dash, 2, 0.0);
+        cairo_move_to(cr, kx + 65, ky);
+        cairo_line_to(cr, kx + 100, ky);
+        cairo_stroke(cr);
+        cairo_set_dash(cr, nullptr, 0, 0.0);
+        text_at(cr, "β", kx + 105, ky, 0.0, 0.35);
+    }
+}
+
+cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length) {
+    static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+    return CAIRO_STATUS_SUCCESS;
+}
+
+std::string extension(const std::string& path) {
+    const auto dot = path.rfind('.');
+    const auto slash = path.rfind('/');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+    std::string e = path.substr(dot + 1);
+    for (char& ch : e) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return e;
+}
+
+}  // namespace
+
+void plot_series(const std::vector<Series>& runs, const std::vector<std::string>& labels, const std::string& path,
+                 const PlotOptions& o) {
+    for (const Series& s : runs)
+        for (const std::string& col : kPlotColumns)
+            if (!s.column(col))
+                throw ConfigError(fmt::format("'{}' has no column '{}': not the series of a wedge run", s.path, col));
+
+    // x axis shared by the panels: the S range of all runs.
+    double s_lo = INFINITY, s_hi = -INFINITY;
+    for (const Series& s : runs)
+        for (double v : *s.column("S"))
+            if (std::isfinite(v)) s_lo = std::min(s_lo, v), s_hi = std::max(s_hi, v);
+    if (s_lo > 0 && s_lo <= s_hi) s_lo = 0;  // S axes start at 0
+    const Range xr = axis_range(s_lo, s_hi, 8);
+
+    Panel taper{"(a) Taper angles α (prowedge), β (retrowedge)", "angle (degrees)", {}, true};
+    Panel height{"(b) Wedge height", "H / h0", {}, false};
+    Panel peak{"(c) Peak deviation from the S point", "(x_peak − x_S) / h0", {}, false};
+    Panel dil{"(d) Dilation", "D (%)", {}, false};
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+        const Series& s = runs[i];
+        const Rgb c = run_color(i);
+        const auto* S = s.column("S");
+        taper.curves.push_back({S, s.column("alpha_deg"), c, false});
+        taper.curves.push_back({S, s.column("beta_deg"), c, true});
+        height.curves.push_back({S, s.column("H_over_h0"), c, false});
+        peak.curves.push_back({S, s.column("peak_dx_over_h0"), c, false});
+        dil.curves.push_back({S, s.column("dilation_pct"), c, false});
+    }
+
+    // Layout: title, 2 x 2 panels, legend rows flowed under them.
+    const double W = std::max(o.width_px, 400);
+    const double cell_w = (W - 2 * kOuter) / 2;
+    const double plot_w = cell_w - kPanelLeft - kPanelRight;
+    const double plot_h = std::round(0.6 * plot_w);
+    const double cell_h = kPanelTop + plot_h + kPanelBottom;
+    const double top = kOuter + (o.title.empty() ? 0.0 : kTitleHeight);
+
+    cairo_surface_t* scratch = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
+    cairo_t* m = cairo_create(scratch);
+    cairo_select_font_face(m, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(m, kFont);
+    struct Entry {
+        double x, y;
+    };
+    std::vector<Entry> entries;
+    const double legend_x0 = kOuter + kPanelLeft, legend_x1 = W - kOuter;
+    double ex = legend_x0, ey = 0;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+        cairo_text_extents_t e;
+        const std::string& label = i < labels.size() ? labels[i] : std::string();
+        cairo_text_extents(m, label.c_str(), &e);
+        const double wdt = 36 + 8 + e.x_advance + 28;
+        if (ex > legend_x0 && ex + wdt > legend_x1) ex = legend_x0, ey += kLegendRow;
+        entries.push_back({ex, ey});
+        ex += wdt;
+    }
+    cairo_destroy(m);
+    cairo_surface_destroy(scratch);
+    const double legend_h = runs.empty() ? 0.0 : ey + kLegendRow + 8;
+    const double H = std::ceil(top + 2 * cell_h + legend_h + kOuter);
+    const int Wi = static_cast<int>(W), Hi = static_cast<int>(H);
+
+    const std::string ext = extension(path);
+    std::string bytes;
+    cairo_surface_t* surface = nullptr;
+    if (ext == "svg") surface = cairo_svg_surface_create_for_stream(append_bytes, &bytes, W, H);
+    else if (ext == "pdf") surface = cairo_pdf_surface_create_for_stream(append_bytes, &bytes, W, H);
+    else surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, Wi, Hi);
+    if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS) {
+        const auto st = cairo_surface_status(surface);
+        cairo_surface_destroy(surface);
+        throw IoError(fmt::format("cannot create plot '{}': {}", path, cairo_status_to_string(st)));
+    }
+    cairo_t* cr = cairo_create(surface);
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    if (!o.title.empty()) {
+        cairo_set_font_size(cr, kFont + 3);
+        text_at(cr, o.title, W / 2, kOuter + 8, 0.5, 1.0);
+    }
+    const Panel* panels[] = {&taper, &height, &peak, &dil};
+    for (int k = 0; k < 4; ++k) {
+        const double cx = kOuter + (k % 2) * cell_w, cy = top + (k / 2) * cell_h;
+        draw_panel(cr, *panels[k], xr, cx + kPanelLeft, cy + kPanelTop, plot_w, plot_h);
+    }
+    // Legend: one colour per run.
+    cairo_set_font_size(cr, kFont);
+    const double ly = top + 2 * cell_h;
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        const Rgb c = run_color(i);
+        const double x = entries[i].x, y = ly + entries[i].y + kLegendRow / 2;
+        cairo_set_source_rgb(cr, c.r, c.g, c.b);
+        cairo_set_line_width(cr, 3.0);
+        cairo_move_to(cr, x, y);
+        cairo_line_to(cr, x + 36, y);
+        cairo_stroke(cr);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        text_at(cr, i < labels.size() ? labels[i] : std::string(), x + 44, y, 0.0, 0.35);
+    }
+    cairo_destroy(cr);
+
+    cairo_status_t st = CAIRO_STATUS_SUCCESS;
+    if (ext != "svg" && ext != "pdf") st = cairo_surface_write_to_png_stream(surface, append_bytes, &bytes);
+    cairo_surface_finish(surface);
+    if (st == CAIRO_STATUS_SUCCESS) st = cairo_surface_status(surface);
+    cairo_surface_destroy(surface);
+    if (st != CAIRO_STATUS_SUCCESS)
+        throw IoError(fmt::format("cannot draw plot '{}': {}", path, cairo_status_to_string(st)));
+    write_file_atomic(path, bytes);
+}
+
+}  // namespace orodem

@@ -155,7 +155,7 @@ ParticleStore prepare_layer(const Config& c, LineFile& log, LineFile* series) {
 std::string series_header() {
     return "step,time,S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,kinetic_energy,contacts,"
            "max_overlap_ratio,toe_pro_x_over_h0,toe_retro_x_over_h0,base_traction,discs_on_base,"
-           "discs_sliding_on_base,fixed_discs";
+           "discs_sliding_on_base,fixed_discs,mean_overlap_ratio,max_speed,base_normal_force";
 }
 
 /// Runs a wedge experiment from the layer; writes series rows and log lines.
@@ -173,7 +173,9 @@ void run_wedge(const Config& c, const ParticleStore& layer, const std::string& d
     const double dt = sim.params.dt;
     const auto steps_per_output =
         std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(c.wedge.output_ds * h0 / (c.wedge.v * dt))));
-    const auto total_steps = static_cast<std::uint64_t>(std::llround(c.wedge.s_max * h0 / (c.wedge.v * dt)));
+    // Whole output intervals only, so the last row sits on s_max (to one step).
+    const auto n_outputs = static_cast<std::uint64_t>(std::max(1LL, std::llround(c.wedge.s_max / c.wedge.output_ds)));
+    const std::uint64_t total_steps = n_outputs * steps_per_output;
     Progress progress;
     auto write_row = [&]() {
         const double S = c.wedge.v * sim.time / h0;
@@ -184,16 +186,19 @@ void run_wedge(const Config& c, const ParticleStore& layer, const std::string& d
         const WedgeMeasures m = measure_wedge(sim.particles, w.profile, c.wedge.v * sim.time);
         const std::size_t fixed = w.fixed_retro ? w.fixed_retro->fixed_count() : 0;
         series.line(fmt::format("{},{:.9g},{:.6f},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.9g},{},{:.6g},{:.6g},{:.6g},"
-                                "{:.6g},{},{},{}",
+                                "{:.6g},{},{},{},{:.6g},{:.6g},{:.6g}",
                                 sim.step_count, sim.time, S, m.H_over_h0, m.alpha_deg, m.beta_deg,
                                 m.peak_dx_over_h0, m.dilation_pct, ke, sim.touching_contacts(),
                                 sim.max_overlap_ratio(), m.toe_pro_x / h0, m.toe_retro_x / h0,
-                                w.base->total_traction(), w.base->discs_on_base(), w.base->discs_sliding(), fixed));
+                                w.base->total_traction(), w.base->discs_on_base(), w.base->discs_sliding(), fixed,
+                                sim.mean_overlap_ratio(), sim.max_speed(), sim.wall_force(kWallProBase).y));
         const double secs = progress.elapsed();
         const double rate = static_cast<double>(sim.step_count) / std::max(secs, 1e-9);
-        log.line(fmt::format("S = {:.3f}: H/h0 = {:.3f}, alpha = {:.2f}, beta = {:.2f}, max overlap/R = {:.4f}, "
-                             "{:.0f} steps/s",
-                             S, m.H_over_h0, m.alpha_deg, m.beta_deg, sim.max_overlap_ratio(), rate));
+        log.line(fmt::format("S = {:.3f}: H/h0 = {:.3f}, alpha = {:.2f}, beta = {:.2f}; health: max overlap/R = {:.4f}, "
+                             "max speed = {:.3g} m/s, contacts/disc = {:.2f}; {:.0f} steps/s",
+                             S, m.H_over_h0, m.alpha_deg, m.beta_deg, sim.max_overlap_ratio(), sim.max_speed(),
+                             static_cast<double>(sim.touching_contacts()) / static_cast<double>(sim.particles.size()),
+                             rate));
         progress.show("S = {:.3f} / {:g}, {:.0f} steps/s, {:.0f} s left", S, c.wedge.s_max, rate,
                       static_cast<double>(total_steps - std::min(total_steps, sim.step_count)) / std::max(rate, 1e-9));
     };
@@ -235,6 +240,7 @@ void run_wedge(const Config& c, const ParticleStore& layer, const std::string& d
     progress.done();
     log.line(fmt::format("finished: S = {:.3f} after {} steps, {:.1f} s wall", c.wedge.v * sim.time / h0,
                          sim.step_count, progress.elapsed()));
+    cmd_plot({dir}, dir + "/figures/plots.png");
 }
 
 }  // namespace
@@ -296,18 +302,21 @@ std::pair<std::string, std::vector<std::string>> parse_vary(const std::string& t
 int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg) {
     const auto [key, values] = parse_vary(vary);
     // Validate every member of the sweep before running any.
+    bool all_wedges = true;  // then the overlay plots at the end
     for (const auto& v : values) {
         CommonArgs one = a;
         one.sets.push_back(key + "=" + v);
         const Config c = load(one);
         timestep_for(c);
         if (is_wedge(c)) check_belt_speed(c);
+        all_wedges = all_wedges && is_wedge(c);
     }
     const std::string stem = fs::path(a.config).stem().string();
     const std::string root = out_arg.empty() ? choose_run_dir("", stem + "-sweep") : out_arg;
     if (!out_arg.empty() && fs::exists(root) && !fs::is_empty(root))
         throw ConfigError(fmt::format("--out {}: directory exists and is not empty; choose a new directory", root));
     make_dirs(root);
+    std::vector<std::string> dirs;
     for (const auto& v : values) {
         CommonArgs one = a;
         one.sets.push_back(key + "=" + v);
@@ -315,7 +324,9 @@ int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& o
         fmt::print("sweep: {} = {} -> {}\n", key, v, dir);
         const int rc = cmd_run(one, dir);
         if (rc != 0) return rc;
+        dirs.push_back(dir);
     }
+    if (all_wedges) cmd_plot(dirs, root + "/plots.png");
     fmt::print("sweep outputs in {}/\n", root);
     return 0;
 }
@@ -347,6 +358,7 @@ int cmd_bench_pile(const std::string& pile, std::uint64_t steps, int threads) {
                omp_get_max_threads(), secs);
     fmt::print("timesteps/s {:.1f}  particle-steps/s {:.3e}  rebuilds {}\n", double(steps) / secs,
                n * double(steps) / secs, sim.rebuild_count());
+    fmt::print("state hash {:016x} (identical at any thread count)\n", sim.state_hash());
     fmt::print("reference check: worst relative kinetic-energy difference {:.2e} ({})\n", worst,
                worst < 1e-6 ? "matches" : "DIFFERS");
     return worst < 1e-6 ? 0 : static_cast<int>(ExitCode::unstable);

@@ -16,12 +16,14 @@ void ConveyorTraction::add_forces(Simulation& sim) {
     const std::size_t n = p.size();
     traction_.resize(n);  // no allocation once sized
     capped_.resize(n);
+    touching_.resize(n);
     const long long nn = static_cast<long long>(n);
 #pragma omp parallel for schedule(static) if(nn >= kParallelMin)
     for (long long ii = 0; ii < nn; ++ii) {
         const std::size_t i = static_cast<std::size_t>(ii);
         traction_[i] = 0.0;
         capped_[i] = 0;
+        touching_[i] = 0;
         if (p.inv_mass[i] == 0.0) continue;  // fixed discs are not dragged
         for (std::uint32_t k = ws.begin[i]; k < ws.begin[i + 1]; ++k) {
             if (ws.wall[k] != wall_) continue;
@@ -29,6 +31,7 @@ void ConveyorTraction::add_forces(Simulation& sim) {
             // tangential part (the base wall is smooth, so this is all of it).
             const double normal = ws.f[k].x * -u.y + ws.f[k].y * u.x;
             if (normal <= 0.0) continue;
+            touching_[i] = 1;  // counted even when it rides exactly at v' (zero traction)
             const double gamma_b = gain_over_dt * p.mass[i];
             double f = gamma_b * (v_belt_ - dot(p.v[i], u));
             const double cap = mu_b_ * normal;
@@ -44,7 +47,7 @@ void ConveyorTraction::add_forces(Simulation& sim) {
     on_base_ = 0;
     sliding_ = 0;
     for (std::size_t i = 0; i < n; ++i) {
-        on_base_ += traction_[i] != 0.0 ? 1 : 0;
+        on_base_ += touching_[i];
         sliding_ += capped_[i];
     }
 }

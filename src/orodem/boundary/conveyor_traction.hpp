@@ -50,6 +50,7 @@ private:
     double gain_;     // g_b [-]
     std::vector<double> traction_;  // per disc slot, this step [N]
     std::vector<unsigned char> capped_;
+    std::vector<unsigned char> touching_;  // 1: a positive normal force from the base this step
     double total_traction_ = 0.0;
     std::size_t on_base_ = 0, sliding_ = 0;
 };

@@ -260,6 +260,30 @@ double Simulation::max_overlap_ratio() const {
     return worst;
 }
 
+double Simulation::mean_overlap_ratio() const {
+    const ParticleStore& p = particles;
+    const ContactStore& cs = contacts;
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < cs.size(); ++k) {
+        if (cs.bonded[k]) continue;
+        const Vec2 d = p.x[cs.i[k]] - (p.x[cs.j[k]] + Vec2{cs.shift[k] * params.period_x, 0.0});
+        const double ri = p.radius[cs.i[k]], rj = p.radius[cs.j[k]];
+        const double delta = ri + rj - norm(d);
+        if (delta > 0.0) {
+            sum += delta / std::min(ri, rj);
+            ++count;
+        }
+    }
+    return count ? sum / static_cast<double>(count) : 0.0;
+}
+
+double Simulation::max_speed() const {
+    double m = 0.0;
+    for (const Vec2& v : particles.v) m = std::max(m, norm2(v));
+    return std::sqrt(m);
+}
+
 Vec2 Simulation::wall_force(std::size_t w) const {
     Vec2 f{};
     for (std::size_t k = 0; k < wall_contacts.size(); ++k)

@@ -72,6 +72,8 @@ public:
     EnergyReport energies() const;
     std::size_t touching_contacts() const;  // unbonded pairs + wall contacts with δ > 0
     double max_overlap_ratio() const;       // max over unbonded touching pairs of δ / min(R_i, R_j)
+    double mean_overlap_ratio() const;      // mean over unbonded touching pairs of δ / min(R_i, R_j)
+    double max_speed() const;               // max |v_i| [m/s]
     /// Total force exerted by discs on wall w [N] (opposite of the forces on the discs).
     Vec2 wall_force(std::size_t w) const;
     std::uint64_t rebuild_count() const { return builder_.rebuild_count(); }

@@ -98,6 +98,11 @@ void draw_panel(cairo_t* cr, const Panel& p, const Range& xr, double x0, double 
                 lo = std::min(lo, (*c.y)[k]);
                 hi = std::max(hi, (*c.y)[k]);
             }
+    if (lo < hi) {  // a little room so that lines do not run along the frame
+        const double pad = 0.03 * (hi - lo);
+        lo = lo >= 0.0 ? std::max(0.0, lo - pad) : lo - pad;  // non-negative data keep a 0 floor
+        hi += pad;
+    }
     const Range yr = axis_range(lo, hi, 6);
     auto px = [&](double x) { return x0 + (x - xr.lo) / (xr.hi - xr.lo) * w; };
     auto py = [&](double y) { return y0 + h - (y - yr.lo) / (yr.hi - yr.lo) * h; };
@@ -146,18 +151,38 @@ void draw_panel(cairo_t* cr, const Panel& p, const Range& xr, double x0, double 
         cairo_set_dash(cr, dash, c.dashed ? 2 : 0, 0.0);
         const std::size_t n = std::min(c.x->size(), c.y->size());
         auto ok = [&](std::size_t k) { return k < n && std::isfinite((*c.x)[k]) && std::isfinite((*c.y)[k]); };
-        for (std::size_t k = 0; k < n; ++k) {
-            if (!ok(k)) continue;
-            const bool starts = k == 0 || !ok(k - 1), ends = !ok(k + 1);
-            if (starts && ends) {  // an isolated point: a dot
-                cairo_new_sub_path(cr);
-                cairo_arc(cr, px((*c.x)[k]), py((*c.y)[k]), 3.0, 0, 2 * std::numbers::pi);
-                cairo_fill(cr);
+        // Each run of finite points is a polyline; one too short to see (a
+        // lone point, or points a pixel apart) is a marker instead: filled for
+        // a solid curve, hollow for a dashed one.
+        for (std::size_t k = 0; k < n;) {
+            if (!ok(k)) {
+                ++k;
                 continue;
             }
-            if (starts) cairo_move_to(cr, px((*c.x)[k]), py((*c.y)[k]));
-            else cairo_line_to(cr, px((*c.x)[k]), py((*c.y)[k]));
-            if (ends) cairo_stroke(cr);
+            std::size_t e = k;
+            double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
+            for (; ok(e); ++e) {
+                x_lo = std::min(x_lo, px((*c.x)[e])), x_hi = std::max(x_hi, px((*c.x)[e]));
+                y_lo = std::min(y_lo, py((*c.y)[e])), y_hi = std::max(y_hi, py((*c.y)[e]));
+            }
+            if (x_hi - x_lo < 3.0 && y_hi - y_lo < 3.0) {
+                cairo_new_sub_path(cr);
+                cairo_arc(cr, 0.5 * (x_lo + x_hi), 0.5 * (y_lo + y_hi), 3.5, 0, 2 * std::numbers::pi);
+                if (c.dashed) {
+                    cairo_set_dash(cr, nullptr, 0, 0.0);
+                    cairo_set_line_width(cr, 1.5);
+                    cairo_stroke(cr);
+                    cairo_set_line_width(cr, 2.0);
+                    cairo_set_dash(cr, dash, 2, 0.0);
+                } else {
+                    cairo_fill(cr);
+                }
+            } else {
+                cairo_move_to(cr, px((*c.x)[k]), py((*c.y)[k]));
+                for (std::size_t j = k + 1; j < e; ++j) cairo_line_to(cr, px((*c.x)[j]), py((*c.y)[j]));
+                cairo_stroke(cr);
+            }
+            k = e;
         }
         cairo_new_path(cr);
     }
@@ -181,11 +206,8 @@ void draw_panel(cairo_t* cr, const Panel& p, const Range& xr, double x0, double 
     text_at(cr, p.ylabel, 0, 0, 0.5, 0.0);
     cairo_restore(cr);
 
-    if (p.taper_key) {  // which line is which angle, in black, top right
-        const double kx = x0 + w - 150, ky = y0 + 20;
-        cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
-        cairo_rectangle(cr, kx - 8, ky - 12, 150, 24);
-        cairo_fill(cr);
+    if (p.taper_key) {  // which line is which angle: in black, above the frame's right end
+        const double kx = x0 + w - 120, ky = y0 - 17;
         cairo_set_source_rgb(cr, 0, 0, 0);
         cairo_set_line_width(cr, 2.0);
         cairo_move_to(cr, kx, ky);

@@ -1,0 +1,306 @@
+// `orodem plot` and `orodem render` on a run directory built by hand:
+// config.toml, series.csv (with NaN rows: no wedge yet), two VTU snapshots
+// and run.pvd. Also the legend labels and the series reader directly.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+
+#include <cairo.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "orodem/core/error.hpp"
+#include "orodem/io/series_reader.hpp"
+#include "orodem/io/vtu_writer.hpp"
+#include "orodem/state/particles.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+void write(const fs::path& p, const std::string& text) {
+    std::ofstream out(p, std::ios::binary);
+    out << text;
+    ASSERT_TRUE(out.good()) << p;
+}
+
+std::string quote(const std::string& s) {
+    std::string q = "'";
+    for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+    return q + "'";
+}
+
+int count_lines(const std::string& s) {
+    int n = 0;
+    for (char ch : s) n += ch == '\n';
+    return n;
+}
+
+std::string config_text(double mu_bp, int threads = 1) {
+    std::ostringstream s;
+    s << "# resolved\n\n[packing]\nh0 = 2.0\nkind = 'clusters'\n\n[run]\nexperiment = 'exp1'\nthreads = " << threads
+      << "\n\n[wedge]\nmu_bp = " << mu_bp << "\nv = 0.2\n";
+    return s.str();
+}
+
+const char* kHeader =
+    "step,time,S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,kinetic_energy,contacts\n";
+
+/// Decoded PNG size and how many pixels are close to (r, g, b) (0-255).
+struct Png {
+    int width = 0, height = 0;
+    long matching = 0;
+    bool ok = false;
+};
+Png decode_png(const fs::path& p, int r = -1, int g = -1, int b = -1) {
+    Png out;
+    cairo_surface_t* s = cairo_image_surface_create_from_png(p.c_str());
+    if (cairo_surface_status(s) == CAIRO_STATUS_SUCCESS) {
+        out.ok = true;
+        out.width = cairo_image_surface_get_width(s);
+        out.height = cairo_image_surface_get_height(s);
+        cairo_surface_flush(s);
+        const unsigned char* data = cairo_image_surface_get_data(s);
+        const int stride = cairo_image_surface_get_stride(s);
+        for (int y = 0; y < out.height && r >= 0; ++y)
+            for (int x = 0; x < out.width; ++x) {
+                std::uint32_t px;
+                std::memcpy(&px, data + y * stride + 4 * x, 4);
+                const int pr = (px >> 16) & 255, pg = (px >> 8) & 255, pb = px & 255;
+                if (std::abs(pr - r) < 12 && std::abs(pg - g) < 12 && std::abs(pb - b) < 12) ++out.matching;
+            }
+    }
+    cairo_surface_destroy(s);
+    return out;
+}
+
+class PlotRender : public ::testing::Test {
+protected:
+    struct Result {
+        int status = -1;
+        std::string out, err;
+    };
+
+    void SetUp() override {
+        std::string tmpl = (fs::temp_directory_path() / "orodem-plot-XXXXXX").string();
+        ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
+        root_ = tmpl;
+        work_ = root_ / "work";
+        capture_ = root_ / "capture";
+        fs::create_directories(work_);
+        fs::create_directories(capture_);
+    }
+    void TearDown() override {
+        std::error_code ec;
+        if (!root_.empty()) fs::remove_all(root_, ec);
+    }
+
+    Result orodem(const std::string& args) {
+        const fs::path out = capture_ / "stdout", err = capture_ / "stderr";
+        const std::string cmd = "cd " + quote(work_.string()) + " && " + quote(ORODEM_EXE) + " " + args + " >" +
+                                quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
+        const int raw = std::system(cmd.c_str());
+        Result r;
+        r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
+        r.out = slurp(out);
+        r.err = slurp(err);
+        return r;
+    }
+
+    /// A run directory as `orodem run` leaves it, small: 12 discs, two snapshots.
+    fs::path make_run(const std::string& rel, double mu_bp) {
+        const fs::path dir = work_ / rel;
+        fs::create_directories(dir / "snapshots");
+        fs::create_directories(dir / "figures");
+        write(dir / "config.toml", config_text(mu_bp));
+        write(dir / "series.csv", std::string(kHeader) +
+                                      "0,0,0.000000,0.1,nan,-nan,0.5,nan,0,40\n"
+                                      "10,1,0.250000,0.2,nan,nan,0.1,20,3.5,41\n"
+                                      "20,2,0.500000,0.3,12.5,8.25,-0.2,35,3.1,42\n"
+                                      "30,3,0.750000,0.35,14," + std::to_string(9.0 + mu_bp) + ",-0.3,nan,2.9,43\n"
+                                      "40,4,1.000000,0.4,15,10,-0.4,50,2.8,44\n");
+        for (int snap = 0; snap < 2; ++snap) {
+            orodem::ParticleStore p;
+            std::vector<double> rel_disp;
+            for (int k = 0; k < 12; ++k) {
+                const double x = -6.0 + k + 0.3 * snap * (k > 6), y = 0.5 + (k % 3);
+                const std::size_t s = p.add({x, y}, 0.45, 2500.0);
+                p.initial_depth[s] = 3.0 - y;
+                p.side[s] = k > 6 ? 1 : 0;
+                rel_disp.push_back(snap == 0 ? 0.0 : k / 11.0);
+            }
+            orodem::write_vtu((dir / (snap == 0 ? "snapshots/S00.000.vtu" : "snapshots/S01.000.vtu")).string(), p,
+                              rel_disp);
+        }
+        orodem::write_pvd((dir / "run.pvd").string(),
+                          {{0.0, "snapshots/S00.000.vtu"}, {1.0, "snapshots/S01.000.vtu"}});
+        return dir;
+    }
+
+    fs::path root_, work_, capture_;
+};
+
+#define EXPECT_HAS(text, needle) \
+    EXPECT_NE(std::string(text).find(needle), std::string::npos) << "missing \"" << (needle) << "\" in:\n" << (text)
+
+}  // namespace
+
+TEST_F(PlotRender, PlotOfOneRunWritesADecodablePng) {
+    const fs::path run = make_run("r1", 0.3);
+    const Result r = orodem("plot r1");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    const fs::path png = run / "figures" / "plots.png";
+    ASSERT_TRUE(fs::exists(png));
+    // The first run's colour is (0.12, 0.47, 0.71): its lines are drawn.
+    const Png d = decode_png(png, 31, 120, 181);
+    ASSERT_TRUE(d.ok);
+    EXPECT_EQ(d.width, 1400);
+    EXPECT_GT(d.height, 800);
+    EXPECT_LT(d.height, 1200);
+    EXPECT_GT(d.matching, 500);
+    // No temporary files left beside it.
+    for (const auto& e : fs::directory_iterator(run / "figures"))
+        EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+TEST_F(PlotRender, PlotFormatFollowsTheExtension) {
+    make_run("r1", 0.3);
+    Result r = orodem("plot r1 --out p.svg");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_HAS(slurp(work_ / "p.svg"), "<svg");
+    r = orodem("plot r1 --out sub/p.pdf");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(slurp(work_ / "sub" / "p.pdf").substr(0, 5), "%PDF-");
+    r = orodem("plot r1 --out p.jpg");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_HAS(r.err, ".png");
+    EXPECT_FALSE(fs::exists(work_ / "p.jpg"));
+}
+
+TEST_F(PlotRender, SeveralRunsGoToTheCommonParent) {
+    make_run("sweep/wedge.mu_bp=0.1", 0.1);
+    make_run("sweep/wedge.mu_bp=0.2", 0.2);
+    const Result r = orodem("plot sweep/wedge.mu_bp=0.1 sweep/wedge.mu_bp=0.2/");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const fs::path png = work_ / "sweep" / "plots.png";
+    ASSERT_TRUE(fs::exists(png)) << r.out;
+    const Png first = decode_png(png, 31, 120, 181), second = decode_png(png, 227, 26, 28);
+    ASSERT_TRUE(first.ok);
+    EXPECT_EQ(first.width, 1400);
+    EXPECT_GT(first.matching, 100);
+    EXPECT_GT(second.matching, 100);  // the second run in its own colour
+}
+
+TEST_F(PlotRender, LegendLabelsNameTheDifferingKeys) {
+    using orodem::legend_labels;
+    // mu_bp differs; threads differ too but do not change the physics.
+    auto l = legend_labels({config_text(0.1, 1), config_text(0.2, 4)}, {"a", "b"}, {"a.toml", "b.toml"});
+    ASSERT_EQ(l.size(), 2u);
+    EXPECT_EQ(l[0], "wedge.mu_bp = 0.1");
+    EXPECT_EQ(l[1], "wedge.mu_bp = 0.2");
+    // Nothing differs (but the thread count): the directory names.
+    l = legend_labels({config_text(0.3, 1), config_text(0.3, 8)}, {"a", "b"}, {"a.toml", "b.toml"});
+    EXPECT_EQ(l, (std::vector<std::string>{"a", "b"}));
+    // One run: its name.
+    EXPECT_EQ(legend_labels({config_text(0.3)}, {"r1"}, {"r1.toml"}), std::vector<std::string>{"r1"});
+    // Two keys differ, one present in one run only.
+    l = legend_labels({config_text(0.1), config_text(0.2) + "[material]\nmu = 0.5\n"}, {"a", "b"}, {"a", "b"});
+    EXPECT_EQ(l[0], "material.mu = (absent), wedge.mu_bp = 0.1");
+    EXPECT_EQ(l[1], "material.mu = 0.5, wedge.mu_bp = 0.2");
+    // Not TOML: an I/O error naming the source.
+    try {
+        legend_labels({config_text(0.1), "[wedge\nmu_bp = "}, {"a", "b"}, {"a/config.toml", "b/config.toml"});
+        FAIL() << "no error";
+    } catch (const orodem::IoError& e) {
+        EXPECT_HAS(e.what(), "b/config.toml");
+    }
+}
+
+TEST_F(PlotRender, SeriesReaderReadsNanAndRejectsBadRows) {
+    write(work_ / "s.csv", std::string(kHeader) + "0,0,0,0.1,nan,-nan,0.5,,0,40\n1,1,0.5,0.2,10,5,0.1,20,3.5,41\n2,2");
+    const orodem::Series s = orodem::read_series_csv((work_ / "s.csv").string());
+    ASSERT_EQ(s.rows(), 2u);  // the unterminated last line is dropped
+    ASSERT_NE(s.column("alpha_deg"), nullptr);
+    EXPECT_TRUE(std::isnan((*s.column("alpha_deg"))[0]));
+    EXPECT_TRUE(std::isnan((*s.column("beta_deg"))[0]));
+    EXPECT_TRUE(std::isnan((*s.column("dilation_pct"))[0]));
+    EXPECT_DOUBLE_EQ((*s.column("alpha_deg"))[1], 10.0);
+    EXPECT_EQ(s.column("no_such"), nullptr);
+    write(work_ / "bad.csv", std::string(kHeader) + "0,0,0,0.1,x,1,0.5,1,0,40\n");
+    EXPECT_THROW(orodem::read_series_csv((work_ / "bad.csv").string()), orodem::IoError);
+    write(work_ / "short.csv", std::string(kHeader) + "0,0,0\n");
+    EXPECT_THROW(orodem::read_series_csv((work_ / "short.csv").string()), orodem::IoError);
+}
+
+TEST_F(PlotRender, RenderRedrawsTheSnapshots) {
+    const fs::path run = make_run("r1", 0.3);
+    Result r = orodem("render r1");
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (const char* f : {"horizons_S00.000.png", "horizons_S01.000.png", "displacement_S01.000.png"}) {
+        const Png d = decode_png(run / "figures" / f);
+        EXPECT_TRUE(d.ok) << f;
+        EXPECT_EQ(d.width, 1600) << f;
+        EXPECT_GT(d.height, 100) << f;
+    }
+    // The first snapshot has nothing to be displaced from.
+    EXPECT_FALSE(fs::exists(run / "figures" / "displacement_S00.000.png"));
+    // --at picks the nearest snapshot; --format and --width apply.
+    r = orodem("render r1 --at 0.8 --format svg --width 800");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_HAS(slurp(run / "figures" / "horizons_S01.000.svg"), "<svg");
+    EXPECT_TRUE(fs::exists(run / "figures" / "displacement_S01.000.svg"));
+    EXPECT_FALSE(fs::exists(run / "figures" / "horizons_S00.000.svg"));
+    r = orodem("render r1 --at 0.1,0.2 --width 640");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(decode_png(run / "figures" / "horizons_S00.000.png").width, 640);
+    EXPECT_EQ(orodem("render r1 --format gif").status, 2);
+    EXPECT_EQ(orodem("render r1 --at one").status, 2);
+}
+
+TEST_F(PlotRender, MissingOrBrokenRunDirectoriesExitWithOneLine) {
+    for (const char* cmd : {"plot nope", "render nope", "plot nope --out x.png"}) {
+        const Result r = orodem(cmd);
+        EXPECT_TRUE(r.status == 2 || r.status == 4) << cmd << ": " << r.status;
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        EXPECT_HAS(r.err, "nope");
+    }
+    fs::create_directories(work_ / "empty");
+    Result r = orodem("plot empty");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_HAS(r.err, "not a run directory");
+    // A run without its series: an I/O error naming the file.
+    const fs::path run = make_run("r1", 0.3);
+    fs::remove(run / "series.csv");
+    r = orodem("plot r1");
+    EXPECT_EQ(r.status, 4);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_HAS(r.err, "series.csv");
+    // A snapshot gone: render names it.
+    fs::remove(run / "snapshots" / "S01.000.vtu");
+    r = orodem("render r1");
+    EXPECT_EQ(r.status, 4);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_HAS(r.err, "S01.000.vtu");
+    // A settle run's series has no S: not a wedge run.
+    write(run / "series.csv", "step,time,kinetic_energy\n0,0,1\n");
+    r = orodem("plot r1");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_HAS(r.err, "'S'");
+    EXPECT_EQ(orodem("plot").status, 2);
+}

@@ -16,16 +16,29 @@ int column_count(const ProfileParams& pp) {
 double column_centre(const ProfileParams& pp, int c) { return pp.x_min + (c + 0.5) * pp.column; }
 }  // namespace
 
-std::vector<double> surface_profile(const ParticleStore& p, const ProfileParams& pp) {
+namespace {
+/// Surface heights and the x of each column's surface particle.
+std::vector<double> surface_with_x(const ParticleStore& p, const ProfileParams& pp, std::vector<double>& top_x) {
     const int n = column_count(pp);
     std::vector<double> top(static_cast<std::size_t>(n), kEmpty);
+    top_x.assign(static_cast<std::size_t>(n), 0.0);
     for (std::size_t s = 0; s < p.size(); ++s) {
         const double fc = std::floor((p.x[s].x - pp.x_min) / pp.column);
         if (fc < 0.0 || fc >= n) continue;
-        auto& t = top[static_cast<std::size_t>(fc)];
-        t = std::max(t, p.x[s].y);
+        const auto c = static_cast<std::size_t>(fc);
+        // Ties (equal heights) go to the smaller x, whatever the slot order.
+        if (p.x[s].y > top[c] || (p.x[s].y == top[c] && p.x[s].x < top_x[c])) {
+            top[c] = p.x[s].y;
+            top_x[c] = p.x[s].x;
+        }
     }
     return top;
+}
+}  // namespace
+
+std::vector<double> surface_profile(const ParticleStore& p, const ProfileParams& pp) {
+    std::vector<double> top_x;
+    return surface_with_x(p, pp, top_x);
 }
 
 double mean_surface(const ParticleStore& p, double x0, double x1, double column) {
@@ -58,7 +71,8 @@ double fit_slope(const std::vector<double>& x, const std::vector<double>& y) {
 WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, double shortening) {
     WedgeMeasures m;
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    const std::vector<double> top = surface_profile(p, pp);
+    std::vector<double> top_x;
+    const std::vector<double> top = surface_with_x(p, pp, top_x);
     const int n = static_cast<int>(top.size());
     int peak = -1;
     for (int c = 0; c < n; ++c)
@@ -67,11 +81,7 @@ WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, dou
             peak = c;
     if (peak < 0) return m;
     // The highest point is the surface particle of the peak column.
-    double peak_x = column_centre(pp, peak);
-    for (std::size_t s = 0; s < p.size(); ++s)
-        if (p.x[s].y == top[static_cast<std::size_t>(peak)] && p.x[s].x >= pp.x_min + peak * pp.column &&
-            p.x[s].x < pp.x_min + (peak + 1) * pp.column)
-            peak_x = p.x[s].x;
+    const double peak_x = top_x[static_cast<std::size_t>(peak)];
     m.H_over_h0 = std::max(0.0, top[static_cast<std::size_t>(peak)] - pp.y_mean) / pp.h0;
     m.peak_dx_over_h0 = (peak_x - pp.x_s) / pp.h0;
 
@@ -101,7 +111,7 @@ WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, dou
         std::vector<double> xs, ys;
         for (int c = a; c <= b; ++c)
             if (top[static_cast<std::size_t>(c)] != kEmpty) {
-                xs.push_back(column_centre(pp, c));
+                xs.push_back(top_x[static_cast<std::size_t>(c)]);
                 ys.push_back(top[static_cast<std::size_t>(c)]);
             }
         if (xs.size() < 3) return nan;
@@ -109,6 +119,7 @@ WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, dou
     };
     m.alpha_deg = toe_pro < peak ? taper(toe_pro, peak) : nan;
     m.beta_deg = (pp.retro_side && toe_retro > peak) ? -taper(peak, toe_retro) : nan;
+    if (std::isnan(m.beta_deg)) m.beta_deg = nan;  // never "-nan" in series.csv
 
     double area = 0.0;
     for (int c = toe_pro; c <= toe_retro; ++c)

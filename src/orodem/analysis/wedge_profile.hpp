@@ -8,9 +8,9 @@
 // peak, the last column of the contiguous run whose surface (smoothed over
 // three columns) stays above y_mean + toe_threshold. α (prowedge, x < peak)
 // and β (retrowedge, x > peak): least-squares lines through the surface
-// centroids from each toe to the peak, in degrees (α = atan slope,
-// β = −atan slope). H = (highest disc top − y_mean), peak deviation = x of
-// the highest point − x_S, both / h0. Dilation D = 100 A_w / A_s with
+// centroids (x_i, y_i of each column's surface particle) from each toe to the
+// peak, in degrees (α = atan slope, β = −atan slope). H = (highest surface
+// centre − y_mean), peak deviation = x of that particle − x_S, both / h0. Dilation D = 100 A_w / A_s with
 // A_w = δx Σ (y_surface − y_mean) between the toes and A_s = shortening · h0.
 #pragma once
 

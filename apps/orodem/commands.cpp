@@ -45,6 +45,17 @@ Config load(const CommonArgs& a) {
     return load_config(a.config, ov);
 }
 
+/// "integrate 6.1%, rebuild 0.4%, ..." with the seconds per phase of step().
+std::string phase_breakdown(const PhaseTimes& t) {
+    const double total = std::max(t.total(), 1e-300);
+    std::string s;
+    for (const auto& [name, secs] : {std::pair{"integrate", t.integrate}, {"rebuild", t.rebuild},
+                                     {"pair forces", t.pair_forces}, {"gather+walls", t.gather},
+                                     {"boundaries", t.boundaries}})
+        s += fmt::format("{}{} {:.3f} s ({:.1f}%)", s.empty() ? "" : ", ", name, secs, 100.0 * secs / total);
+    return s;
+}
+
 void set_threads(const Config& c) {
     if (c.run.threads > 0) omp_set_num_threads(c.run.threads);
 }
@@ -210,7 +221,7 @@ void run_wedge(const Config& c, const ParticleStore& layer, const std::string& d
     view.x_min = w.profile.x_min;
     view.x_max = w.profile.x_max;
     view.y_min = 0.0;
-    view.y_max = 4.0 * h0;
+    view.y_max = (1.5 + 0.6 * std::sqrt(c.wedge.s_max)) * h0;  // room for H ≈ h0 sqrt(S/3) [m]
     view.h0 = h0;
     view.band = h0 / 5.0;
     auto draw = [&]() {
@@ -240,6 +251,7 @@ void run_wedge(const Config& c, const ParticleStore& layer, const std::string& d
     progress.done();
     log.line(fmt::format("finished: S = {:.3f} after {} steps, {:.1f} s wall", c.wedge.v * sim.time / h0,
                          sim.step_count, progress.elapsed()));
+    log.line("step phases: " + phase_breakdown(sim.phase_times()));
     cmd_plot({dir}, dir + "/figures/plots.png");
 }
 
@@ -337,8 +349,9 @@ int cmd_bench_pile(const std::string& pile, std::uint64_t steps, int threads) {
     if (threads > 0) omp_set_num_threads(threads);
     const ParticleStore discs = read_pile_file(pile, BenchPile{}.density);
     Simulation sim = make_bench_pile(discs);
-    const auto t0 = std::chrono::steady_clock::now();
     sim.initialize();
+    // Times the step loop only, as LAMMPS's "Loop time" (set-up excluded).
+    const auto t0 = std::chrono::steady_clock::now();
     double worst = 0.0;
     std::uint64_t done = 0;
     for (const BenchReference& ref : kBenchReference) {
@@ -358,6 +371,8 @@ int cmd_bench_pile(const std::string& pile, std::uint64_t steps, int threads) {
                omp_get_max_threads(), secs);
     fmt::print("timesteps/s {:.1f}  particle-steps/s {:.3e}  rebuilds {}\n", double(steps) / secs,
                n * double(steps) / secs, sim.rebuild_count());
+    fmt::print("pairs {} ({:.2f} per disc)\n", sim.contacts.size(), double(sim.contacts.size()) / n);
+    fmt::print("phases: {}\n", phase_breakdown(sim.phase_times()));
     fmt::print("state hash {:016x} (identical at any thread count)\n", sim.state_hash());
     fmt::print("reference check: worst relative kinetic-energy difference {:.2e} ({})\n", worst,
                worst < 1e-6 ? "matches" : "DIFFERS");

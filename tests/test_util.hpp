@@ -1,12 +1,25 @@
 // Helpers shared by the tests: small hand-built simulations.
 #pragma once
 
+#include <omp.h>
+
 #include <initializer_list>
 
 #include "orodem/engine/simulation.hpp"
 #include "orodem/physics/contact_law.hpp"
 
 namespace orodem::test {
+
+/// Runs the enclosing scope on one OpenMP thread and restores the setting.
+/// Small hand-built systems have nothing to share between threads;
+/// thread-count independence is tested by tests/unit/test_determinism.cpp.
+struct SerialOmp {
+    int saved = omp_get_max_threads();
+    SerialOmp() { omp_set_num_threads(1); }
+    ~SerialOmp() { omp_set_num_threads(saved); }
+    SerialOmp(const SerialOmp&) = delete;
+    SerialOmp& operator=(const SerialOmp&) = delete;
+};
 
 struct DiscSpec {
     Vec2 x;

@@ -37,17 +37,7 @@ using namespace orodem;
 
 namespace {
 
-// A few discs have nothing to share between threads: run them on one thread
-// so that OpenMP's per-step fork/join cost (large on a loaded machine) does
-// not dominate. Restored afterwards; thread-count independence is tested
-// elsewhere.
-struct SerialOmp {
-    int saved = omp_get_max_threads();
-    SerialOmp() { omp_set_num_threads(1); }
-    ~SerialOmp() { omp_set_num_threads(saved); }
-    SerialOmp(const SerialOmp&) = delete;
-    SerialOmp& operator=(const SerialOmp&) = delete;
-};
+using test::SerialOmp;
 
 constexpr double kRho = 2500.0;  // [kg/m³]
 constexpr double kR = 0.5;       // [m]

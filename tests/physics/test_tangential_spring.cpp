@@ -22,16 +22,7 @@ namespace {
 
 constexpr double kRel = 1e-12;
 
-// Two discs have nothing to share between threads: run them on one thread so
-// that OpenMP's per-step fork/join cost (large on a loaded machine) does not
-// dominate. Restored afterwards; thread-count independence is tested elsewhere.
-struct SerialOmp {
-    int saved = omp_get_max_threads();
-    SerialOmp() { omp_set_num_threads(1); }
-    ~SerialOmp() { omp_set_num_threads(saved); }
-    SerialOmp(const SerialOmp&) = delete;
-    SerialOmp& operator=(const SerialOmp&) = delete;
-};
+using test::SerialOmp;
 
 LawParams spring_law(double mu, double cohesion) {
     LawParams law;

@@ -18,19 +18,13 @@
 
 #include "orodem/analysis/rel_disp.hpp"
 #include "orodem/engine/simulation.hpp"
+#include "test_util.hpp"
 
 using namespace orodem;
 
 namespace {
 
-// Few discs: run the set-up force pass on one thread (the machine is shared).
-struct SerialOmp {
-    int saved = omp_get_max_threads();
-    SerialOmp() { omp_set_num_threads(1); }
-    ~SerialOmp() { omp_set_num_threads(saved); }
-    SerialOmp(const SerialOmp&) = delete;
-    SerialOmp& operator=(const SerialOmp&) = delete;
-};
+using test::SerialOmp;
 
 constexpr double kR = 0.5;       // disc radius [m]; spacing 2r = 1
 constexpr int kCols = 16, kRows = 10;

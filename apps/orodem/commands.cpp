@@ -1,7 +1,11 @@
 // The subcommands run, check, sweep and bench: thin glue from typed
 // arguments to the library; the only code that prints progress.
 #include <omp.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
+
+#include <csignal>
+#include <sstream>
 
 #include <chrono>
 #include <cmath>
@@ -28,6 +32,8 @@
 #include "orodem/render/particle_view.hpp"
 #include "orodem/io/vtu_writer.hpp"
 #include "orodem/analysis/rel_disp.hpp"
+#include "orodem/engine/health.hpp"
+#include "orodem/io/checkpoint.hpp"
 
 #include "commands.hpp"
 
@@ -169,25 +175,165 @@ std::string series_header() {
            "discs_sliding_on_base,fixed_discs,mean_overlap_ratio,max_speed,base_normal_force";
 }
 
-/// Runs a wedge experiment from the layer; writes series rows and log lines.
-void run_wedge(const Config& c, const ParticleStore& layer, const std::string& dir, LineFile& log) {
-    WedgeSetup w = make_wedge(c, layer);
+/// SIGINT/SIGTERM while a wedge runs: the handler only records the signal;
+/// SA_RESETHAND puts the default action back, so a second signal ends the
+/// process at once (every file is written atomically or line by line, so
+/// nothing is left corrupt; at worst a *.tmp file stays behind).
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
+
+class StopSignals {
+public:
+    StopSignals() {
+        g_stop_signal = 0;
+        struct sigaction sa {};
+        sa.sa_handler = on_stop_signal;
+        sigemptyset(&sa.sa_mask);
+        sa.sa_flags = SA_RESETHAND | SA_RESTART;
+        ::sigaction(SIGINT, &sa, &old_int_);
+        ::sigaction(SIGTERM, &sa, &old_term_);
+    }
+    ~StopSignals() {
+        ::sigaction(SIGINT, &old_int_, nullptr);
+        ::sigaction(SIGTERM, &old_term_, nullptr);
+    }
+    StopSignals(const StopSignals&) = delete;
+    StopSignals& operator=(const StopSignals&) = delete;
+    int pending() const { return static_cast<int>(g_stop_signal); }
+
+private:
+    struct sigaction old_int_ {}, old_term_ {};
+};
+
+std::uint64_t file_bytes(const std::string& path) {
+    std::error_code ec;
+    const auto n = fs::file_size(path, ec);
+    if (ec) throw IoError(fmt::format("cannot stat '{}': {}", path, ec.message()));
+    return static_cast<std::uint64_t>(n);
+}
+
+/// Free bytes for an unprivileged user on the file system holding path.
+std::uint64_t free_bytes(const std::string& path) {
+    struct statvfs s {};
+    if (::statvfs(path.c_str(), &s) != 0) throw_io_error("cannot query free space of", path);
+    return static_cast<std::uint64_t>(s.f_bavail) * static_cast<std::uint64_t>(s.f_frsize);
+}
+
+/// Refuses (IoError, exit 4) when the disk holding dir cannot take what the
+/// rest of the run writes: per remaining output one snapshot and its two
+/// pictures (sized like the last ones written), two checkpoints plus the one
+/// being written, and 2 MB for series, log and the final plots.
+void check_free_space(const std::string& dir, const std::string& last_snapshot, std::uint64_t outputs_left,
+                      std::uint64_t checkpoint_size) {
+    const std::string name = fs::path(last_snapshot).stem().string();
+    const std::uint64_t vtu = file_bytes(dir + "/" + last_snapshot);
+    std::uint64_t pictures = 0;
+    for (const char* kind : {"horizons", "displacement"}) {
+        std::error_code ec;
+        const auto n = fs::file_size(fmt::format("{}/figures/{}_{}.png", dir, kind, name), ec);
+        if (!ec) pictures = std::max<std::uint64_t>(pictures, n);
+    }
+    const std::uint64_t need = outputs_left * (vtu + 2 * pictures) + 3 * checkpoint_size + (2u << 20);
+    const std::uint64_t have = free_bytes(dir);
+    if (have < need)
+        throw IoError(fmt::format(
+            "not enough free space for {}: the rest of the run needs about {:.1f} MB ({} outputs x ({:.2f} MB "
+            "snapshot + 2 x {:.2f} MB pictures) + 3 x {:.2f} MB checkpoints + 2 MB), {:.1f} MB are free; free some "
+            "space or choose --out on another disk, then resume with --resume",
+            dir, static_cast<double>(need) / 1e6, outputs_left, static_cast<double>(vtu) / 1e6,
+            static_cast<double>(pictures) / 1e6, static_cast<double>(checkpoint_size) / 1e6,
+            static_cast<double>(have) / 1e6));
+}
+
+/// Runs (or, with `resumed`, continues) a wedge experiment; writes series rows,
+/// snapshots, pictures, checkpoints and log lines. Returns the exit status:
+/// 0, or 128 + signal when interrupted (after a checkpoint).
+int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& log, const RunLoopState* resumed) {
     Simulation& sim = w.sim;
-    sim.initialize();
     const double h0 = c.packing.h0;
-    log.line(fmt::format("{}: {} discs, incoming plate {:.4g} h0, retroside {:.4g} h0, undeformed surface "
-                         "y_mean = {:.4g} m, v = {:g} m/s",
-                         c.run.experiment, sim.particles.size(), w.pro_length / h0, w.retro_length / h0,
-                         w.profile.y_mean, c.wedge.v));
-    LineFile series(dir + "/series.csv");
-    series.line(series_header());
+    const std::uint64_t cfg_hash = config_hash(c);
+    const std::string ckpt_dir = dir + "/checkpoint";
+    RunLoopState st;
+    if (resumed) {
+        st = *resumed;
+        w.profile.y_mean = st.surface_y_mean;
+    } else {
+        sim.initialize();
+        st.surface_y_mean = w.profile.y_mean;
+        log.line(fmt::format("{}: {} discs, incoming plate {:.4g} h0, retroside {:.4g} h0, undeformed surface "
+                             "y_mean = {:.4g} m, v = {:g} m/s",
+                             c.run.experiment, sim.particles.size(), w.pro_length / h0, w.retro_length / h0,
+                             w.profile.y_mean, c.wedge.v));
+    }
+    const std::string series_path = dir + "/series.csv";
+    LineFile series(series_path);
+    if (!resumed) series.line(series_header());
     const double dt = sim.params.dt;
     const auto steps_per_output =
         std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(c.wedge.output_ds * h0 / (c.wedge.v * dt))));
     // Whole output intervals only, so the last row sits on s_max (to one step).
     const auto n_outputs = static_cast<std::uint64_t>(std::max(1LL, std::llround(c.wedge.s_max / c.wedge.output_ds)));
     const std::uint64_t total_steps = n_outputs * steps_per_output;
+    const std::uint64_t first_step = sim.step_count;
     Progress progress;
+
+    // Health limits (docs/reliability.md): the domain is the box between the
+    // end walls (2 h0 beyond) from h0 below the base up to the height of all
+    // the material stacked in one column h0 wide; the speed bound is twice the
+    // free-fall speed from that height plus ten times the belt speed.
+    HealthLimits lim;
+    lim.max_overlap_ratio = c.run.max_overlap_ratio;
+    const double ceiling = w.pro_length + w.retro_length + 2.0 * h0;
+    lim.y_min = -h0;
+    lim.y_max = ceiling;
+    lim.x_max = (w.retro_length > 0.0 ? w.retro_length : 0.0) + 2.0 * h0;
+    lim.max_speed = 2.0 * std::sqrt(2.0 * c.numerics.gravity * ceiling) + 10.0 * c.wedge.v;
+    auto update_limits = [&]() { lim.x_min = sim.walls[kWallProEnd].a.x - 2.0 * h0; };
+
+    std::string last_good;           // checkpoint bytes of the last output that passed the checks
+    std::uint64_t last_good_step = 0;
+    std::string last_good_snapshot;  // its snapshot
+    auto state_bytes = [&]() {
+        st.series_bytes = file_bytes(series_path);
+        st.log_bytes = file_bytes(dir + "/log.txt");
+        return encode_checkpoint(sim, st, cfg_hash);
+    };
+    auto last_checkpoint_time = std::chrono::steady_clock::now();
+    auto save_checkpoint = [&](const std::string& bytes) {
+        const std::string path = write_checkpoint(ckpt_dir, sim.step_count, bytes);
+        last_checkpoint_time = std::chrono::steady_clock::now();
+        return path;
+    };
+    // Stops the run: snapshot of the bad state for inspection, checkpoint of
+    // the last good one, InstabilityError (exit 3).
+    auto check = [&]() {
+        update_limits();
+        const auto problem = check_health(sim, lim);
+        if (!problem) return;
+        const double S = c.wedge.v * sim.time / h0;
+        std::string saved = "no earlier good state was kept";
+        if (!last_good.empty()) {
+            const std::string path = write_checkpoint(ckpt_dir, last_good_step, last_good, 0);
+            saved = fmt::format("last good state: step {} (snapshot {}, checkpoint {})", last_good_step,
+                                last_good_snapshot, path);
+        }
+        std::string bad_snapshot;
+        try {
+            bad_snapshot = fmt::format("{}/snapshots/unstable-step{}.vtu", dir, sim.step_count);
+            write_vtu(bad_snapshot, sim.particles, std::vector<double>(sim.particles.size(), 0.0));
+        } catch (const std::exception&) {
+            bad_snapshot = "(could not be written)";
+        }
+        const std::string msg = fmt::format(
+            "step {} (S = {:.4f}): disc {} at ({:.6g}, {:.6g}) m: {} ({}). Likely cause: {}. {}; the state at "
+            "the failure is in {}",
+            sim.step_count, S, problem->id, problem->x.x, problem->x.y, problem->what, problem->detail,
+            problem->advice, saved, bad_snapshot);
+        log.line("UNSTABLE: " + msg);
+        throw InstabilityError(msg);
+    };
+
     auto write_row = [&]() {
         const double S = c.wedge.v * sim.time / h0;
         const double ke = sim.kinetic_energy();
@@ -204,7 +350,7 @@ void run_wedge(const Config& c, const ParticleStore& layer, const std::string& d
                                 w.base->total_traction(), w.base->discs_on_base(), w.base->discs_sliding(), fixed,
                                 sim.mean_overlap_ratio(), sim.max_speed(), sim.wall_force(kWallProBase).y));
         const double secs = progress.elapsed();
-        const double rate = static_cast<double>(sim.step_count) / std::max(secs, 1e-9);
+        const double rate = static_cast<double>(sim.step_count - first_step) / std::max(secs, 1e-9);
         log.line(fmt::format("S = {:.3f}: H/h0 = {:.3f}, alpha = {:.2f}, beta = {:.2f}; health: max overlap/R = {:.4f}, "
                              "max speed = {:.3g} m/s, contacts/disc = {:.2f}; {:.0f} steps/s",
                              S, m.H_over_h0, m.alpha_deg, m.beta_deg, sim.max_overlap_ratio(), sim.max_speed(),
@@ -215,23 +361,22 @@ void run_wedge(const Config& c, const ParticleStore& layer, const std::string& d
     };
     make_dirs(dir + "/figures");
     make_dirs(dir + "/snapshots");
-    std::vector<std::pair<double, std::string>> pvd;
-    std::vector<Vec2> x_then = positions_by_id(sim.particles);
+    if (!resumed) st.x_then = positions_by_id(sim.particles);
     ViewOptions view;
     view.x_min = w.profile.x_min;
     view.x_max = w.profile.x_max;
     view.y_min = 0.0;
-    view.y_max = (1.5 + 0.6 * std::sqrt(c.wedge.s_max)) * h0;  // room for H ≈ h0 sqrt(S/3) [m]
+    view.y_max = 4.0 * h0;
     view.h0 = h0;
     view.band = h0 / 5.0;
     auto draw = [&]() {
         const double S = c.wedge.v * sim.time / h0;
-        const std::vector<double> rel = relative_displacement(sim, x_then);
-        x_then = positions_by_id(sim.particles);
+        const std::vector<double> rel = relative_displacement(sim, st.x_then);
+        st.x_then = positions_by_id(sim.particles);
         const std::string name = fmt::format("S{:06.3f}", S);
         write_vtu(fmt::format("{}/snapshots/{}.vtu", dir, name), sim.particles, rel);
-        pvd.emplace_back(S, fmt::format("snapshots/{}.vtu", name));
-        write_pvd(dir + "/run.pvd", pvd);
+        st.pvd.emplace_back(S, fmt::format("snapshots/{}.vtu", name));
+        write_pvd(dir + "/run.pvd", st.pvd);
         view.label = fmt::format("{}   S = {:.2f}   initial depth", c.run.experiment, S);
         view.color_by = "horizons";
         render_particles(sim.particles, nullptr, view, fmt::format("{}/figures/horizons_{}.png", dir, name));
@@ -241,27 +386,154 @@ void run_wedge(const Config& c, const ParticleStore& layer, const std::string& d
             render_particles(sim.particles, &rel, view, fmt::format("{}/figures/displacement_{}.png", dir, name));
         }
     };
-    write_row();
-    draw();
-    while (sim.step_count < total_steps) {
-        sim.advance(std::min(steps_per_output, total_steps - sim.step_count));
+    // One output: checks, row, snapshot and pictures, then the state kept as
+    // the last good one and (every checkpoint_every_outputs) a checkpoint.
+    bool space_checked = false;
+    auto output = [&]() {
+        check();
         write_row();
         draw();
+        ++st.outputs;
+        last_good = state_bytes();
+        last_good_step = sim.step_count;
+        last_good_snapshot = st.pvd.back().second;
+        if (st.outputs % static_cast<std::uint64_t>(c.run.checkpoint_every_outputs) == 0 ||
+            sim.step_count >= total_steps)
+            save_checkpoint(last_good);
+        if (!space_checked) {
+            space_checked = true;
+            check_free_space(dir, st.pvd.back().second, n_outputs + 1 - std::min(n_outputs + 1, st.outputs),
+                             last_good.size());
+        }
+    };
+
+    StopSignals signals;
+    if (resumed) {
+        if (!st.pvd.empty()) {
+            write_pvd(dir + "/run.pvd", st.pvd);
+            last_good = encode_checkpoint(sim, st, cfg_hash);
+            last_good_step = sim.step_count;
+            last_good_snapshot = st.pvd.back().second;
+            space_checked = true;
+            check_free_space(dir, st.pvd.back().second, n_outputs + 1 - std::min(n_outputs + 1, st.outputs),
+                             last_good.size());
+        }
+    } else {
+        output();
+    }
+    // Steps in chunks of at most 100 (chunking does not change the result):
+    // between chunks, the signal flag and the wall-clock checkpoint timer are
+    // looked at; every 1000 steps the state is checked.
+    constexpr std::uint64_t kChunk = 100;
+    constexpr std::uint64_t kCheckEvery = 1000;
+    const double checkpoint_secs = 60.0 * c.run.checkpoint_minutes;
+    while (sim.step_count < total_steps) {
+        const std::uint64_t next_output = std::min(total_steps, (sim.step_count / steps_per_output + 1) * steps_per_output);
+        const std::uint64_t next_stop = std::min(next_output, (sim.step_count / kChunk + 1) * kChunk);
+        sim.advance(next_stop - sim.step_count);
+        if (sim.step_count == next_output) {
+            output();
+        } else if (sim.step_count % kCheckEvery == 0) {
+            check();
+        }
+        if (const int sig = signals.pending()) {
+            if (sim.step_count != next_output) check();
+            const std::string path = save_checkpoint(state_bytes());
+            const double S = c.wedge.v * sim.time / h0;
+            const char* sig_name = sig == SIGINT ? "SIGINT" : "SIGTERM";
+            log.line(fmt::format("interrupted by {} at step {} (S = {:.4f}); checkpoint {}", sig_name,
+                                 sim.step_count, S, path));
+            progress.done();
+            fmt::print(stderr,
+                       "orodem: interrupted by {} at step {} (S = {:.4f}); checkpoint written to {}\n"
+                       "resume with: orodem run {}/config.toml --out {} --resume\n",
+                       sig_name, sim.step_count, S, path, dir, dir);
+            return 128 + sig;
+        }
+        if (checkpoint_secs > 0.0 && sim.step_count != next_output &&
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint_time).count() >=
+                checkpoint_secs) {
+            if (sim.step_count % kCheckEvery != 0) check();
+            save_checkpoint(state_bytes());
+        }
     }
     progress.done();
     log.line(fmt::format("finished: S = {:.3f} after {} steps, {:.1f} s wall", c.wedge.v * sim.time / h0,
                          sim.step_count, progress.elapsed()));
-    log.line("step phases: " + phase_breakdown(sim.phase_times()));
     cmd_plot({dir}, dir + "/figures/plots.png");
+    return 0;
+}
+
+/// The first line where the resolved configs differ, ignoring the keys that
+/// do not change results (run.threads, run.checkpoint_minutes); "" if none.
+std::string first_config_difference(const Config& a, const Config& b) {
+    auto lines = [](const Config& c) {
+        std::vector<std::string> out;
+        std::istringstream in(to_toml(c));
+        std::string section, l;
+        while (std::getline(in, l)) {
+            if (!l.empty() && l[0] == '[') section = l;
+            if (l.rfind("threads =", 0) == 0 || l.rfind("checkpoint_minutes =", 0) == 0) continue;
+            out.push_back(section + " " + l);
+        }
+        return out;
+    };
+    const auto la = lines(a), lb = lines(b);
+    for (std::size_t k = 0; k < std::max(la.size(), lb.size()); ++k) {
+        const std::string x = k < la.size() ? la[k] : "(nothing)", y = k < lb.size() ? lb[k] : "(nothing)";
+        if (x != y) return fmt::format("the run has '{}', this config has '{}'", x, y);
+    }
+    return "";
+}
+
+/// Cuts a file back to its length at the checkpoint.
+void truncate_to(const std::string& path, std::uint64_t bytes) {
+    const std::uint64_t now = file_bytes(path);
+    if (now < bytes)
+        throw IoError(fmt::format("'{}' has {} bytes, fewer than the {} it had at the checkpoint; the run directory "
+                                  "was changed after the checkpoint, so it cannot be resumed exactly",
+                                  path, now, bytes));
+    if (::truncate(path.c_str(), static_cast<off_t>(bytes)) != 0) throw_io_error("cannot truncate", path);
+}
+
+int resume_run(const Config& c, const std::string& dir) {
+    if (dir.empty())
+        throw ConfigError("--resume needs --out DIR: the run directory to continue (it holds config.toml and checkpoint/)");
+    if (!is_wedge(c))
+        throw ConfigError(fmt::format("--resume: run.experiment = \"{}\" writes no checkpoints; only the wedge "
+                                      "experiments can be resumed", c.run.experiment));
+    if (!fs::exists(dir + "/config.toml"))
+        throw ConfigError(fmt::format("--resume --out {}: no config.toml there; give the directory of the run to continue", dir));
+    const Config saved = load_config(dir + "/config.toml");
+    if (config_hash(saved) != config_hash(c))
+        throw ConfigError(fmt::format("--resume --out {}: {} differs from the run's config ({}); resume with "
+                                      "orodem run {}/config.toml --out {} --resume",
+                                      dir, c.path, first_config_difference(saved, c), dir, dir));
+    WedgeSetup w = make_wedge(c, ParticleStore{});
+    RunLoopState st;
+    std::vector<std::string> notes;
+    const std::string path = restore_newest_checkpoint(dir + "/checkpoint", config_hash(c), w.sim, st, &notes);
+    for (const auto& n : notes) fmt::print(stderr, "orodem: warning: {}\n", n);
+    truncate_to(dir + "/series.csv", st.series_bytes);
+    truncate_to(dir + "/log.txt", st.log_bytes);
+    LineFile log(dir + "/log.txt");
+    for (const auto& n : notes) log.line("warning: " + n);
+    log.line(fmt::format("resumed by orodem {} from {} at step {} (S = {:.4f}) with {} threads", ORODEM_VERSION, path,
+                         w.sim.step_count, c.wedge.v * w.sim.time / c.packing.h0, omp_get_max_threads()));
+    fmt::print("resuming {} from step {} ({})\n", dir, w.sim.step_count, path);
+    const int rc = run_wedge(c, w, dir, log, &st);
+    if (rc == 0) fmt::print("outputs in {}/ (config.toml, log.txt, series.csv)\n", dir);
+    return rc;
 }
 
 }  // namespace
 
-int cmd_run(const CommonArgs& a, const std::string& out_arg) {
+int cmd_run(const CommonArgs& a, const std::string& out_arg, bool resume) {
     const Config c = load(a);
     const TimestepInfo t = timestep_for(c);
     if (is_wedge(c)) check_belt_speed(c);
     set_threads(c);
+    if (resume) return resume_run(c, out_arg);
     const std::string dir = choose_run_dir(out_arg, c.path);
     make_dirs(dir);
     write_file_atomic(dir + "/config.toml", to_toml(c));
@@ -284,7 +556,9 @@ int cmd_run(const CommonArgs& a, const std::string& out_arg) {
         return 0;
     }
     const ParticleStore layer = prepare_layer(c, log, nullptr);
-    run_wedge(c, layer, dir, log);
+    WedgeSetup w = make_wedge(c, layer);
+    const int rc = run_wedge(c, w, dir, log, nullptr);
+    if (rc != 0) return rc;
     fmt::print("outputs in {}/ (config.toml, log.txt, series.csv)\n", dir);
     return 0;
 }

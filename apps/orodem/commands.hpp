@@ -16,7 +16,8 @@ struct CommonArgs {
 };
 
 int cmd_check(const CommonArgs& a);
-int cmd_run(const CommonArgs& a, const std::string& out_arg);
+/// resume: continue the run in out_arg from its newest usable checkpoint.
+int cmd_run(const CommonArgs& a, const std::string& out_arg, bool resume = false);
 int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg);
 int cmd_bench_pile(const std::string& pile, std::uint64_t steps, int threads);
 

@@ -1,6 +1,7 @@
 // orodem command line: parses arguments with CLI11, hands typed values to the
 // subcommands (commands.hpp) and maps errors to exit statuses (0 ok,
-// 1 internal, 2 bad config or arguments, 3 unstable, 4 I/O).
+// 1 internal, 2 bad config or arguments, 3 unstable, 4 I/O; an interrupted
+// run returns 130 for SIGINT, 143 for SIGTERM after writing a checkpoint).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -21,6 +22,16 @@ int main(int argc, char** argv) {
     run->add_option("--out", out, "Output directory (new or empty); default runs/<config name>");
     run->add_option("--set", run_args.sets, "Override a config value, e.g. --set material.mu=0.5")->take_all();
     run->add_option("--threads", run_args.threads, "OpenMP threads (0 = all cores)");
+    bool resume = false;
+    run->add_flag("--resume", resume, "Continue the run in --out DIR from its newest usable checkpoint (same config; "
+                                      "the outputs end up as those of an uninterrupted run)");
+
+    CommonArgs resume_args;
+    std::string resume_dir;
+    auto* resume_cmd = app.add_subcommand("resume", "Continue the run in RUN_DIR from its newest usable checkpoint "
+                                                    "(same as: run RUN_DIR/config.toml --out RUN_DIR --resume)");
+    resume_cmd->add_option("run_dir", resume_dir, "Run directory")->required();
+    resume_cmd->add_option("--threads", resume_args.threads, "OpenMP threads (0 = all cores)");
 
     auto* check = app.add_subcommand("check", "Validate CONFIG and print the resolved config, particle count and dt; writes nothing");
     check->add_option("config", check_args.config, "TOML config file")->required();
@@ -75,7 +86,11 @@ int main(int argc, char** argv) {
         return rc == 0 ? 0 : static_cast<int>(ExitCode::config);
     }
     try {
-        if (*run) return cmd_run(run_args, out);
+        if (*run) return cmd_run(run_args, out, resume);
+        if (*resume_cmd) {
+            resume_args.config = resume_dir + "/config.toml";
+            return cmd_run(resume_args, resume_dir, true);
+        }
         if (*check) return cmd_check(check_args);
         if (*sweep) return cmd_sweep(sweep_args, sweep_vary, sweep_out);
         if (*plot) return cmd_plot(plot_dirs, plot_out);

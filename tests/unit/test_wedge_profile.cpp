@@ -264,3 +264,35 @@ TEST(WedgeProfile, DilationOfAKnownBlock) {
         EXPECT_NEAR(m.dilation_pct, D_true, bound);
     }
 }
+
+// Singly vergent wedge against a backstop at x_max: a straight prowedge of
+// slope tan 10° up to the backstop, where the last 0.4 m is dragged up by a
+// further 0.15 m (the backstop's own drag zone). With backstop_margin = 0.5 m
+// the fit leaves that zone out and returns 10° within 0.5° (same bound as the
+// doubly vergent cases: the fitted points lie on the line); without the
+// margin the bump steepens the fit by more than that, which shows the margin
+// matters.
+TEST(WedgeProfile, CriticalWedgeAlphaMeasuredAwayFromTheBackstop) {
+    const double alpha = rad(10.0);
+    const double x_back = 0.0;  // backstop [m]
+    ParticleStore p;
+    add_flat_layer(p);
+    const int k_back = static_cast<int>((x_back - kXMin) / kDs);  // first sample at the backstop
+    const double height = 0.8;                                      // at the backstop [m]
+    const int k_toe = k_back - static_cast<int>(height / std::tan(alpha) / kDs);
+    for (int k = k_toe; k < k_back; ++k) {
+        double h = height - (x_back - sample_x(k)) * std::tan(alpha);
+        if (x_back - sample_x(k) < 0.4) h += 0.15;
+        if (h > 2 * kR) add_heap_column(p, k, h);
+    }
+    ProfileParams pp = params(0.05);
+    pp.x_max = x_back;
+    pp.retro_side = false;
+    pp.backstop_margin = 0.5;
+    const WedgeMeasures with = measure_wedge(p, pp, 1.0);
+    EXPECT_NEAR(with.alpha_deg, 10.0, 0.5);
+    EXPECT_TRUE(std::isnan(with.beta_deg));
+    pp.backstop_margin = 0.0;
+    const WedgeMeasures without = measure_wedge(p, pp, 1.0);
+    EXPECT_GT(std::fabs(without.alpha_deg - 10.0), 0.5);
+}

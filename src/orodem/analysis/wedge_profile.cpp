@@ -117,7 +117,10 @@ WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, dou
         if (xs.size() < 3) return nan;
         return std::atan(fit_slope(xs, ys)) * 180.0 / std::numbers::pi;
     };
-    m.alpha_deg = toe_pro < peak ? taper(toe_pro, peak) : nan;
+    int alpha_end = peak;
+    if (!pp.retro_side)
+        while (alpha_end > toe_pro && column_centre(pp, alpha_end) > pp.x_max - pp.backstop_margin) --alpha_end;
+    m.alpha_deg = toe_pro < alpha_end ? taper(toe_pro, alpha_end) : nan;
     m.beta_deg = (pp.retro_side && toe_retro > peak) ? -taper(peak, toe_retro) : nan;
     if (std::isnan(m.beta_deg)) m.beta_deg = nan;  // never "-nan" in series.csv
 

@@ -29,6 +29,8 @@ struct ProfileParams {
     double h0 = 1.0;             // [m]
     double x_s = 0.0;            // S point [m]
     bool retro_side = true;      // false: singly vergent (backstop), β not measured
+    double backstop_margin = 0.0;  // singly vergent: columns this close to x_max are left
+                                   // out of the α fit, which is measured away from the backstop [m]
 };
 
 struct WedgeMeasures {

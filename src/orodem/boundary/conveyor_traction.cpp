@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "orodem/core/bytes.hpp"
 #include "orodem/core/parallel.hpp"
 #include "orodem/engine/simulation.hpp"
 
@@ -50,6 +51,18 @@ void ConveyorTraction::add_forces(Simulation& sim) {
         on_base_ += touching_[i];
         sliding_ += capped_[i];
     }
+}
+
+void ConveyorTraction::save_state(ByteWriter& w) const {
+    w.put(total_traction_);
+    w.put(static_cast<std::uint64_t>(on_base_));
+    w.put(static_cast<std::uint64_t>(sliding_));
+}
+
+void ConveyorTraction::load_state(ByteReader& r) {
+    total_traction_ = r.get<double>();
+    on_base_ = static_cast<std::size_t>(r.get<std::uint64_t>());
+    sliding_ = static_cast<std::size_t>(r.get<std::uint64_t>());
 }
 
 }  // namespace orodem

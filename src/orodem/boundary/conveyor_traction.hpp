@@ -34,6 +34,10 @@ public:
 
     std::string_view name() const override { return "conveyor-traction"; }
     void add_forces(Simulation& sim) override;
+    /// The last step's outputs (total traction, counts); the per-slot buffers
+    /// are rewritten by every add_forces and need no saving.
+    void save_state(ByteWriter& w) const override;
+    void load_state(ByteReader& r) override;
 
     /// Sum of the tractions applied this step [N] (x along û), and the number
     /// of discs on the base and of those at the Coulomb cap.

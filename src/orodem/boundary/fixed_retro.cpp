@@ -1,4 +1,5 @@
 #include "orodem/boundary/fixed_retro.hpp"
+#include "orodem/core/bytes.hpp"
 #include "orodem/core/parallel.hpp"
 
 #include "orodem/engine/simulation.hpp"
@@ -24,5 +25,9 @@ void FixedRetroside::after_step(Simulation& sim) {
     for (std::size_t i = 0; i < p.size(); ++i) count += (p.flags[i] & kFlagFixed) ? 1 : 0;
     fixed_ = count;
 }
+
+void FixedRetroside::save_state(ByteWriter& w) const { w.put(static_cast<std::uint64_t>(fixed_)); }
+
+void FixedRetroside::load_state(ByteReader& r) { fixed_ = static_cast<std::size_t>(r.get<std::uint64_t>()); }
 
 }  // namespace orodem

@@ -16,6 +16,8 @@ public:
     std::string_view name() const override { return "fixed-retroside"; }
     void after_step(Simulation& sim) override;
     std::size_t fixed_count() const { return fixed_; }
+    void save_state(ByteWriter& w) const override;
+    void load_state(ByteReader& r) override;
 
 private:
     std::size_t wall_;

@@ -9,6 +9,8 @@
 namespace orodem {
 
 class Simulation;
+class ByteWriter;
+class ByteReader;
 
 class Boundary {
 public:
@@ -20,6 +22,11 @@ public:
     virtual void add_forces(Simulation&) {}
     /// After the second half kick (velocities at t+dt).
     virtual void after_step(Simulation&) {}
+    /// Checkpoints (io/checkpoint.cpp): write / read back every member that a
+    /// later step or output depends on, so a restored run continues bit for bit.
+    /// A boundary with no state of its own keeps the empty defaults.
+    virtual void save_state(ByteWriter&) const {}
+    virtual void load_state(ByteReader&) {}
 };
 
 }  // namespace orodem

@@ -6,11 +6,14 @@
 // max, which is exact.
 #include "orodem/engine/simulation.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 
 #include "orodem/core/hash.hpp"
 #include "orodem/core/parallel.hpp"
+#include "orodem/engine/pair_kernel.hpp"
 
 namespace orodem {
 
@@ -68,47 +71,39 @@ void Simulation::rebuild_pairs() {
 }
 
 template <bool kUpdateHistory>
-void Simulation::compute_forces() {
+void Simulation::pair_forces() {
+    // Phase A: every candidate pair evaluates the law into its own slots
+    // (engine/pair_kernel.hpp: SIMD lanes, bit-identical to one pair at a
+    // time). Each thread takes one contiguous range, cut at multiples of 64
+    // pairs so that no two threads write the same cache line.
     ParticleStore& p = particles;
     ContactStore& cs = contacts;
-    const double dt = params.dt;
-    const double W = params.period_x;
-    const LawParams law = params.law;
-
-    // Phase A: one iteration per candidate pair, writing only that pair's slots.
-    const long long npairs = static_cast<long long>(cs.size());
-#pragma omp parallel for schedule(static) if(npairs >= kParallelMin)
-    for (long long kk = 0; kk < npairs; ++kk) {
-        const std::size_t k = static_cast<std::size_t>(kk);
-        const std::uint32_t i = cs.i[k], j = cs.j[k];
-        const Vec2 d = p.x[i] - (p.x[j] + Vec2{cs.shift[k] * W, 0.0});
-        const double r2 = norm2(d);
-        const double rsum = p.radius[i] + p.radius[j];
-        const bool bonded = cs.bonded[k] != 0;
-        if (!bonded && r2 >= rsum * rsum) {
-            cs.xi[k] = {};  // history starts afresh at the next touch
-            cs.f[k] = {};
-            cs.c[k] = 0.0;
-            continue;
-        }
-        const double r = std::sqrt(r2);
-        const double mi = p.mass[i], mj = p.mass[j];
-        // A fixed disc is infinitely heavy: the pair's effective mass is the
-        // free disc's own, as against a wall.
-        const double m_eff = p.inv_mass[j] == 0.0 ? mi : p.inv_mass[i] == 0.0 ? mj : mi * mj / (mi + mj);
-        const PairKinematics kin{(1.0 / r) * d, rsum - r, p.v[i] - p.v[j],
-                                 p.radius[i] * p.omega[i] + p.radius[j] * p.omega[j], m_eff};
-        Vec2 xi = cs.xi[k];
-        const PairForce pf = bonded ? eval_contact<true>(law, kin, dt, xi)
-                                    : eval_contact<false>(law, kin, dt, xi);
-        if constexpr (kUpdateHistory) cs.xi[k] = xi;
-        cs.f[k] = pf.f;
-        cs.c[k] = pf.c;
+    const PairKernelData kd{p.x.data(),      p.v.data(),      p.omega.data(), p.radius.data(),
+                            p.mass.data(),   p.inv_mass.data(), cs.i.data(),  cs.j.data(),
+                            cs.shift.data(), cs.bonded.data(), cs.xi.data(), cs.f.data(),
+                            cs.c.data(),     params.period_x, params.dt,     params.law,
+                            kUpdateHistory};
+    const std::size_t npairs = cs.size();
+#pragma omp parallel if(static_cast<long long>(npairs) >= kParallelMin)
+    {
+        const std::size_t nth = static_cast<std::size_t>(omp_get_num_threads());
+        const std::size_t tid = static_cast<std::size_t>(omp_get_thread_num());
+        const std::size_t chunks = (npairs + 63) / 64;
+        const std::size_t b = std::min(npairs, 64 * (chunks * tid / nth));
+        const std::size_t e = std::min(npairs, 64 * (chunks * (tid + 1) / nth));
+        if (b < e) eval_pair_range(kd, b, e);
     }
+}
 
-    // Phase B: per disc, fixed order: gravity, owned pairs, incoming pairs, walls.
+template <bool kUpdateHistory, bool kKick>
+void Simulation::gather_forces() {
+    ParticleStore& p = particles;
+    const ContactStore& cs = contacts;
     WallContactStore& ws = wall_contacts;
+    const double dt = params.dt;
+    const double half = 0.5 * dt;
     const Vec2 g = params.gravity;
+    // Phase B: per disc, fixed order: gravity, owned pairs, incoming pairs, walls.
     const long long n = static_cast<long long>(p.size());
 #pragma omp parallel for schedule(static) if(n >= kParallelMin)
     for (long long ii = 0; ii < n; ++ii) {
@@ -152,10 +147,25 @@ void Simulation::compute_forces() {
         }
         p.force[i] = f;
         p.torque[i] = t;
+        if constexpr (kKick) {
+            // The second half kick, fused: the same operations as kick().
+            p.v[i] += (half * p.inv_mass[i]) * f;
+            p.omega[i] += half * p.inv_inertia[i] * t;
+        }
     }
 }
 
-void Simulation::step() {
+// Out-of-line instances for bench/bench_kernels.cpp (KernelBench).
+template void Simulation::pair_forces<true>();
+template void Simulation::gather_forces<true, false>();
+
+template <bool kUpdateHistory>
+void Simulation::compute_forces() {
+    pair_forces<kUpdateHistory>();
+    gather_forces<kUpdateHistory, false>();
+}
+
+void Simulation::kick_drift() {
     ParticleStore& p = particles;
     const double dt = params.dt;
     const double half = 0.5 * dt;
@@ -172,6 +182,34 @@ void Simulation::step() {
         max_d2 = std::max(max_d2, norm2(p.x[i] - x_ref[i]));
     }
     max_disp2_ = max_d2;
+}
+
+void Simulation::kick() {
+    ParticleStore& p = particles;
+    const double half = 0.5 * params.dt;
+    const long long n = static_cast<long long>(p.size());
+#pragma omp parallel for schedule(static) if(n >= kParallelMin)
+    for (long long ii = 0; ii < n; ++ii) {
+        const std::size_t i = static_cast<std::size_t>(ii);
+        p.v[i] += (half * p.inv_mass[i]) * p.force[i];
+        p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
+    }
+}
+
+bool Simulation::needs_rebuild(double wall_move) const {
+    return force_rebuild_ || std::sqrt(max_disp2_) + wall_move > 0.5 * params.skin;
+}
+
+void Simulation::step() {
+    const double dt = params.dt;
+    double t0 = omp_get_wtime();
+    auto lap = [&t0](double& acc) {
+        const double t1 = omp_get_wtime();
+        acc += t1 - t0;
+        t0 = t1;
+    };
+    kick_drift();
+    lap(times_.integrate);
     double wall_move = 0.0;
     for (std::size_t w = 0; w < walls.size(); ++w) {
         const Vec2 dx = dt * walls[w].velocity;
@@ -181,18 +219,28 @@ void Simulation::step() {
         wall_move = std::max(wall_move, norm(wall_shift_[w]));
     }
     for (auto& b : boundaries) b->after_drift(*this);
+    lap(times_.boundaries);
 
-    if (force_rebuild_ || std::sqrt(max_disp2_) + wall_move > 0.5 * params.skin) rebuild_pairs();
-    compute_forces<true>();
-    for (auto& b : boundaries) b->add_forces(*this);
-
-#pragma omp parallel for schedule(static) if(n >= kParallelMin)
-    for (long long ii = 0; ii < n; ++ii) {
-        const std::size_t i = static_cast<std::size_t>(ii);
-        p.v[i] += (half * p.inv_mass[i]) * p.force[i];
-        p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
+    if (needs_rebuild(wall_move)) rebuild_pairs();
+    lap(times_.rebuild);
+    pair_forces<true>();
+    lap(times_.pair_forces);
+    if (boundaries.empty()) {
+        // No hook can change the forces between the gather and the kick:
+        // kick each disc right after summing its force (one pass, not two).
+        gather_forces<true, true>();
+        lap(times_.gather);
+    } else {
+        gather_forces<true, false>();
+        lap(times_.gather);
+        for (auto& b : boundaries) b->add_forces(*this);
+        lap(times_.boundaries);
+        kick();
+        lap(times_.integrate);
+        for (auto& b : boundaries) b->after_step(*this);
+        lap(times_.boundaries);
     }
-    for (auto& b : boundaries) b->after_step(*this);
+    ++times_.steps;
     ++step_count;
     time = static_cast<double>(step_count) * dt;
 }

@@ -36,6 +36,19 @@ struct SimParams {
     double period_x = 0.0;      // W [m]
 };
 
+/// Wall time spent in each phase of step(), accumulated since the start or
+/// the last reset_phase_times() [s]. One clock read per phase boundary.
+struct PhaseTimes {
+    double integrate = 0.0;    // half kicks and drift (incl. the rebuild trigger's max displacement)
+    double rebuild = 0.0;      // neighbour rebuilds (sort, pair lists, history)
+    double pair_forces = 0.0;  // phase A: the law per disc pair
+    double gather = 0.0;       // phase B: per-disc sums and wall contacts (plus the second
+                               // half kick when no boundary can change forces, see step())
+    double boundaries = 0.0;   // wall motion and Boundary hooks
+    std::uint64_t steps = 0;   // steps timed
+    double total() const { return integrate + rebuild + pair_forces + gather + boundaries; }
+};
+
 struct EnergyReport {
     double kinetic_translational = 0;  // ½ Σ m v² [J]
     double kinetic_rotational = 0;     // ½ Σ I ω² [J]
@@ -83,10 +96,28 @@ public:
     /// Forces a pair rebuild at the next step (e.g. after particles were moved by hand).
     void request_rebuild() { force_rebuild_ = true; }
 
+    /// Per-phase wall time of step() so far (see PhaseTimes).
+    const PhaseTimes& phase_times() const { return times_; }
+    void reset_phase_times() { times_ = {}; }
+
 private:
+    // The phases of step(); step() is the only caller in the library.
+    // bench/bench_kernels.cpp times them one by one through KernelBench.
+    friend struct KernelBench;
+    // io/checkpoint.cpp saves and restores the private state below (builder_'s
+    // x_ref and rebuild count, wall_shift_, max_disp2_, force_rebuild_); a new
+    // member that later steps depend on must be added there too.
+    friend struct SimulationAccess;
+    void kick_drift();       // v += F/m dt/2, ω += T/I dt/2, x += v dt, θ += ω dt; max displacement
+    bool needs_rebuild(double wall_move) const;
     void rebuild_pairs();
     template <bool kUpdateHistory>
-    void compute_forces();
+    void pair_forces();      // phase A
+    template <bool kUpdateHistory, bool kKick>
+    void gather_forces();    // phase B; kKick: also the second half kick
+    void kick();             // second half kick
+    template <bool kUpdateHistory>
+    void compute_forces();   // phases A and B, no kick
     PairBuilder::Settings builder_settings() const;
 
     PairBuilder builder_;
@@ -94,6 +125,7 @@ private:
     std::vector<LawParams> wall_law_; // cached per wall
     double max_disp2_ = 0.0;          // largest |x - x_ref|² since the last rebuild [m²]
     bool force_rebuild_ = false;
+    PhaseTimes times_;
 };
 
 /// Builds the bond topology (all pairs inside each cluster) from cluster ids.

@@ -236,6 +236,12 @@ Config read(const toml::table& root, const std::string& file) {
         c.run.seed = static_cast<std::uint64_t>(r.integer("seed", static_cast<std::int64_t>(c.run.seed), 0, std::numeric_limits<std::int64_t>::max()));
         c.run.threads = static_cast<int>(r.integer("threads", c.run.threads, 0, 1024));
         c.run.output_interval = r.number("output_interval", c.run.output_interval, positive());
+        if (is_wedge(c)) {
+            c.run.checkpoint_every_outputs = static_cast<int>(
+                r.integer("checkpoint_every_outputs", c.run.checkpoint_every_outputs, 1, 1000000));
+            c.run.checkpoint_minutes = r.number("checkpoint_minutes", c.run.checkpoint_minutes, non_negative());
+            c.run.max_overlap_ratio = r.number("max_overlap_ratio", c.run.max_overlap_ratio, {0.0, 1.0, true, false});
+        }
         r.finish();
     }
     if (is_wedge(c)) {
@@ -296,13 +302,16 @@ Config read(const toml::table& root, const std::string& file) {
         if (p.h0 < 4.0 * p.r_max)
             r.refuse("h0", fmt::format("must be at least 4 r_max = {:g} m (two disc layers)", 4.0 * p.r_max));
         if (is_wedge(c)) {
-            if (in && in->get("length"))
-                r.refuse("length", "is derived by the wedge experiments from wedge.s_max, wedge.pro_margin and "
-                                   "wedge.retro_length; remove it");
             // Incoming plate long enough to reach s_max, plus the retroside cover.
             const WedgeConfig& w = c.wedge;
             const double retro = c.run.experiment == "critical-wedge" ? 0.0 : w.retro_length;
-            p.length = (w.s_max + w.pro_margin + retro) * p.h0;
+            const double derived = (w.s_max + w.pro_margin + retro) * p.h0;
+            // A run directory's config.toml holds the derived value; that exact
+            // value is accepted so the file loads again (orodem run --resume).
+            if (in && in->get("length") && r.number("length", derived, positive()) != derived)
+                r.refuse("length", fmt::format("is derived by the wedge experiments from wedge.s_max, wedge.pro_margin "
+                                               "and wedge.retro_length (here {:g} m); remove it", derived));
+            p.length = derived;
             o->insert_or_assign("length", p.length);
         } else {
             p.length = r.number("length", p.length, positive());

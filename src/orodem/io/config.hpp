@@ -20,6 +20,9 @@ struct RunConfig {
     std::uint64_t seed = 1;             // master seed; packing.seed defaults to it [-]
     int threads = 0;                    // OpenMP threads, 0 = all cores [-]
     double output_interval = 0.05;      // settle: simulated time between series rows [s]
+    int checkpoint_every_outputs = 1;   // wedge: a checkpoint every this many outputs [-]
+    double checkpoint_minutes = 10.0;   // wedge: and after this much wall time, checked every 100 steps; 0 = off [min]
+    double max_overlap_ratio = 0.5;     // wedge: stop (exit 3) when an overlap exceeds this fraction of the smaller radius [-]
 };
 
 /// The wedge experiments (SPEC §2). Lengths in units of h0 where noted.

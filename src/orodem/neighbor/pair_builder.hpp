@@ -46,6 +46,9 @@ public:
     const std::vector<Vec2>& x_ref() const { return x_ref_; }
     std::vector<Vec2>& x_ref() { return x_ref_; }
     std::uint64_t rebuild_count() const { return rebuilds_; }
+    /// Checkpoint restore only (io/checkpoint.cpp); x_ref and this count are
+    /// the builder's only state that outlives a rebuild (the rest is scratch).
+    void set_rebuild_count(std::uint64_t n) { rebuilds_ = n; }
 
 private:
     void sort_by_cell(ParticleStore& p, const Settings& s);

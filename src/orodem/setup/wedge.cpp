@@ -82,6 +82,7 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer) {
     pp.x_s = 0.0;
     pp.toe_threshold = w.toe_threshold * h0;
     pp.retro_side = !backstop;
+    pp.backstop_margin = backstop ? 0.5 * h0 : 0.0;  // the backstop's own drag zone
     // Undeformed surface: the incoming layer away from both ends.
     pp.y_mean = mean_surface(p, x_pro + h0, -h0, pp.column);
     return ws;

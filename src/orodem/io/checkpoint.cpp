@@ -1,0 +1,400 @@
+#include "orodem/io/checkpoint.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cstring>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "orodem/core/bytes.hpp"
+#include "orodem/core/hash.hpp"
+#include "orodem/io/files.hpp"
+
+namespace orodem {
+
+/// The one door into Simulation's private state (a friend of Simulation).
+struct SimulationAccess {
+    static void save(const Simulation& s, ByteWriter& w) {
+        w.put_vector(s.builder_.x_ref());
+        w.put(s.builder_.rebuild_count());
+        w.put_vector(s.wall_shift_);
+        w.put(s.max_disp2_);
+        w.put(static_cast<std::uint8_t>(s.force_rebuild_ ? 1 : 0));
+    }
+    struct Saved {
+        std::vector<Vec2> x_ref;
+        std::uint64_t rebuilds = 0;
+        std::vector<Vec2> wall_shift;
+        double max_disp2 = 0.0;
+        bool force_rebuild = false;
+    };
+    static Saved read(ByteReader& r) {
+        Saved v;
+        r.get_vector(v.x_ref);
+        r.get(v.rebuilds);
+        r.get_vector(v.wall_shift);
+        r.get(v.max_disp2);
+        v.force_rebuild = r.get<std::uint8_t>() != 0;
+        return v;
+    }
+    /// After particles and walls are in place: the derived caches and the saved internals.
+    static void restore(Simulation& s, Saved&& v) {
+        s.bonds = build_bond_topology(s.particles);
+        s.wall_law_.clear();
+        for (std::size_t w = 0; w < s.walls.size(); ++w) s.wall_law_.push_back(s.wall_law(w));
+        s.builder_.x_ref() = std::move(v.x_ref);
+        s.builder_.set_rebuild_count(v.rebuilds);
+        s.wall_shift_ = std::move(v.wall_shift);
+        s.max_disp2_ = v.max_disp2;
+        s.force_rebuild_ = v.force_rebuild;
+    }
+};
+
+namespace {
+
+constexpr char kMagic[8] = {'O', 'R', 'O', 'D', 'E', 'M', 'C', 'K'};
+
+std::uint64_t fnv(std::string_view b) {
+    Fnv1a h;
+    h.add_bytes(b.data(), b.size());
+    return h.value();
+}
+
+void put_walls(ByteWriter& w, const std::vector<Wall>& walls) {
+    w.put(static_cast<std::uint64_t>(walls.size()));
+    for (const Wall& x : walls) {
+        w.put(x.a); w.put(x.b); w.put(x.velocity); w.put(x.surface_speed);
+        w.put(static_cast<std::uint8_t>(x.infinite)); w.put(static_cast<std::uint8_t>(x.rough));
+        w.put(x.mu); w.put(static_cast<std::uint8_t>(x.open_ends));
+    }
+}
+
+std::vector<Wall> get_walls(ByteReader& r) {
+    const auto n = r.get<std::uint64_t>();
+    if (n > r.remaining()) throw CheckpointError("wall count out of range");
+    std::vector<Wall> walls(static_cast<std::size_t>(n));
+    for (Wall& x : walls) {
+        r.get(x.a); r.get(x.b); r.get(x.velocity); r.get(x.surface_speed);
+        x.infinite = r.get<std::uint8_t>() != 0; x.rough = r.get<std::uint8_t>() != 0;
+        r.get(x.mu); x.open_ends = r.get<std::uint8_t>() != 0;
+    }
+    return walls;
+}
+
+void put_tag(ByteWriter& w, std::string_view tag) { w.put_string(tag); }
+void expect_tag(ByteReader& r, std::string_view tag) {
+    const std::string t = r.get_string();
+    if (t != tag) throw CheckpointError(fmt::format("section '{}' expected, found '{}'", tag, t));
+}
+
+[[noreturn]] void bad(const std::string& why) { throw CheckpointError("inconsistent contents: " + why); }
+
+/// Offsets of a CSR index: n+1 entries, non-decreasing, starting at 0, ending at total.
+void check_offsets(const std::vector<std::uint32_t>& b, std::size_t n, std::size_t total, const char* what) {
+    if (b.size() != n + 1) bad(fmt::format("{} has {} offsets for {} discs", what, b.size(), n));
+    if (b[0] != 0 || b[n] != total) bad(fmt::format("{} does not span its {} entries", what, total));
+    for (std::size_t k = 0; k < n; ++k)
+        if (b[k] > b[k + 1]) bad(fmt::format("{} decreases at {}", what, k));
+}
+
+struct Header {
+    CheckpointInfo info;
+    std::string_view payload;
+};
+
+Header read_header(std::string_view bytes, std::uint64_t expected_hash) {
+    if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+        throw CheckpointError("not an orodem checkpoint (wrong magic bytes)");
+    ByteReader r(bytes.substr(sizeof kMagic));
+    Header h;
+    std::uint64_t size = 0, payload_sum = 0, header_sum = 0;
+    try {
+        r.get(h.info.version);
+        if (h.info.version != kCheckpointVersion)
+            throw CheckpointError(fmt::format("checkpoint format version {}, this orodem ({}) reads version {}",
+                                              h.info.version, ORODEM_VERSION, kCheckpointVersion));
+        h.info.program_version = r.get_string();
+        r.get(h.info.config_hash);
+        r.get(h.info.step);
+        r.get(size);
+        r.get(payload_sum);
+        const std::size_t header_end = sizeof kMagic + r.offset();
+        r.get(header_sum);
+        if (header_sum != fnv(bytes.substr(0, header_end)))
+            throw CheckpointError("header checksum mismatch (corrupt file)");
+    } catch (const CheckpointError&) {
+        throw;
+    } catch (const IoError& e) {
+        throw CheckpointError(fmt::format("truncated header ({})", e.what()));
+    }
+    const std::size_t start = sizeof kMagic + r.offset();
+    if (bytes.size() - start != size)
+        throw CheckpointError(fmt::format("payload is {} bytes, the header says {} (truncated or padded file)",
+                                          bytes.size() - start, size));
+    h.payload = bytes.substr(start);
+    if (fnv(h.payload) != payload_sum) throw CheckpointError("payload checksum mismatch (corrupt file)");
+    if (h.info.config_hash != expected_hash)
+        throw ConfigError(fmt::format("the checkpoint was made with another config (hash {:016x}, this config "
+                                      "{:016x}); resume with the run's own config.toml and the same --set values",
+                                      h.info.config_hash, expected_hash));
+    return h;
+}
+
+}  // namespace
+
+std::uint64_t config_hash(const Config& c) {
+    Config n = c;
+    if (toml::table* run = n.resolved["run"].as_table()) {
+        if (run->contains("threads")) run->insert_or_assign("threads", std::int64_t{0});
+        if (run->contains("checkpoint_minutes")) run->insert_or_assign("checkpoint_minutes", 0.0);
+    }
+    return fnv(to_toml(n));
+}
+
+std::string encode_checkpoint(const Simulation& sim, const RunLoopState& run, std::uint64_t cfg_hash) {
+    ByteWriter w;
+    const ParticleStore& p = sim.particles;
+    put_tag(w, "particles");
+    w.put(static_cast<std::uint64_t>(p.size()));
+    p.for_each_column([&](const auto& col) { w.put_vector(col); });
+    w.put_vector(p.slot_of_id);
+    put_tag(w, "contacts");
+    const ContactStore& c = sim.contacts;
+    w.put_vector(c.i); w.put_vector(c.j); w.put_vector(c.key); w.put_vector(c.xi); w.put_vector(c.shift);
+    w.put_vector(c.bonded); w.put_vector(c.f); w.put_vector(c.c); w.put_vector(c.begin);
+    w.put_vector(c.in_begin); w.put_vector(c.in_pair);
+    put_tag(w, "wall_contacts");
+    const WallContactStore& wc = sim.wall_contacts;
+    w.put_vector(wc.wall); w.put_vector(wc.key); w.put_vector(wc.xi); w.put_vector(wc.f); w.put_vector(wc.c);
+    w.put_vector(wc.begin);
+    put_tag(w, "walls");
+    put_walls(w, sim.walls);
+    put_tag(w, "clock");
+    w.put(sim.step_count);
+    w.put(sim.time);
+    put_tag(w, "internals");
+    SimulationAccess::save(sim, w);
+    put_tag(w, "boundaries");
+    w.put(static_cast<std::uint64_t>(sim.boundaries.size()));
+    for (const auto& b : sim.boundaries) {
+        w.put_string(b->name());
+        ByteWriter own;
+        b->save_state(own);
+        w.put_string(own.bytes());
+    }
+    put_tag(w, "run");
+    w.put(run.outputs);
+    w.put_vector(run.x_then);
+    w.put(static_cast<std::uint64_t>(run.pvd.size()));
+    for (const auto& [S, file] : run.pvd) {
+        w.put(S);
+        w.put_string(file);
+    }
+    w.put(run.series_bytes);
+    w.put(run.log_bytes);
+    w.put(run.surface_y_mean);
+    put_tag(w, "end");
+
+    const std::string& payload = w.bytes();
+    ByteWriter h;
+    h.bytes().append(kMagic, sizeof kMagic);
+    h.put(kCheckpointVersion);
+    h.put_string(ORODEM_VERSION);
+    h.put(cfg_hash);
+    h.put(sim.step_count);
+    h.put(static_cast<std::uint64_t>(payload.size()));
+    h.put(fnv(payload));
+    h.put(fnv(h.bytes()));
+    std::string out = std::move(h.bytes());
+    out += payload;
+    return out;
+}
+
+CheckpointInfo verify_checkpoint(std::string_view bytes, std::uint64_t expected_config_hash) {
+    return read_header(bytes, expected_config_hash).info;
+}
+
+void decode_checkpoint(std::string_view bytes, std::uint64_t expected_config_hash, Simulation& sim,
+                       RunLoopState& run_out) {
+    const Header h = read_header(bytes, expected_config_hash);
+    ByteReader r(h.payload);
+    ParticleStore p;
+    ContactStore c;
+    WallContactStore wc;
+    std::vector<Wall> walls;
+    std::uint64_t step = 0;
+    double time = 0.0;
+    SimulationAccess::Saved internals;
+    std::vector<std::string> boundary_state;
+    RunLoopState run;
+    try {
+        expect_tag(r, "particles");
+        const auto n64 = r.get<std::uint64_t>();
+        if (n64 > h.payload.size()) bad("particle count out of range");
+        const std::size_t n = static_cast<std::size_t>(n64);
+        p.for_each_column([&](auto& col) {
+            r.get_vector(col);
+            if (col.size() != n) bad(fmt::format("a particle column has {} entries for {} discs", col.size(), n));
+        });
+        r.get_vector(p.slot_of_id);
+        if (p.slot_of_id.size() != n) bad("slot_of_id size");
+        for (std::size_t s = 0; s < n; ++s)
+            if (p.id[s] >= n || p.slot_of_id[p.id[s]] != s) bad(fmt::format("slot_of_id does not invert id at slot {}", s));
+
+        expect_tag(r, "contacts");
+        r.get_vector(c.i); r.get_vector(c.j); r.get_vector(c.key); r.get_vector(c.xi); r.get_vector(c.shift);
+        r.get_vector(c.bonded); r.get_vector(c.f); r.get_vector(c.c); r.get_vector(c.begin);
+        r.get_vector(c.in_begin); r.get_vector(c.in_pair);
+        const std::size_t m = c.i.size();
+        if (c.j.size() != m || c.key.size() != m || c.xi.size() != m || c.shift.size() != m ||
+            c.bonded.size() != m || c.f.size() != m || c.c.size() != m || c.in_pair.size() != m)
+            bad("contact arrays differ in length");
+        check_offsets(c.begin, n, m, "contacts.begin");
+        check_offsets(c.in_begin, n, m, "contacts.in_begin");
+        for (std::size_t k = 0; k < m; ++k)
+            if (c.i[k] >= n || c.j[k] >= n || c.in_pair[k] >= m) bad(fmt::format("contact {} indexes out of range", k));
+
+        expect_tag(r, "wall_contacts");
+        r.get_vector(wc.wall); r.get_vector(wc.key); r.get_vector(wc.xi); r.get_vector(wc.f); r.get_vector(wc.c);
+        r.get_vector(wc.begin);
+        const std::size_t q = wc.wall.size();
+        if (wc.key.size() != q || wc.xi.size() != q || wc.f.size() != q || wc.c.size() != q)
+            bad("wall contact arrays differ in length");
+        check_offsets(wc.begin, n, q, "wall_contacts.begin");
+
+        expect_tag(r, "walls");
+        walls = get_walls(r);
+        if (walls.size() != sim.walls.size())
+            bad(fmt::format("{} walls saved, the experiment has {}", walls.size(), sim.walls.size()));
+        for (std::size_t k = 0; k < q; ++k)
+            if (wc.wall[k] >= walls.size()) bad(fmt::format("wall contact {} names wall {}", k, wc.wall[k]));
+
+        expect_tag(r, "clock");
+        r.get(step);
+        r.get(time);
+        if (step != h.info.step) bad("step differs from the header's");
+
+        expect_tag(r, "internals");
+        internals = SimulationAccess::read(r);
+        if (internals.x_ref.size() != n) bad("x_ref size");
+        if (internals.wall_shift.size() != walls.size()) bad("wall_shift size");
+
+        expect_tag(r, "boundaries");
+        const auto nb = r.get<std::uint64_t>();
+        if (nb != sim.boundaries.size())
+            bad(fmt::format("{} boundaries saved, the experiment has {}", nb, sim.boundaries.size()));
+        for (std::size_t k = 0; k < nb; ++k) {
+            const std::string name = r.get_string();
+            if (name != sim.boundaries[k]->name())
+                bad(fmt::format("boundary {} is '{}', the experiment's is '{}'", k, name, sim.boundaries[k]->name()));
+            boundary_state.push_back(r.get_string());
+        }
+
+        expect_tag(r, "run");
+        r.get(run.outputs);
+        r.get_vector(run.x_then);
+        if (!run.x_then.empty() && run.x_then.size() != n) bad("x_then size");
+        const auto npvd = r.get<std::uint64_t>();
+        if (npvd > h.payload.size()) bad("pvd count out of range");
+        for (std::uint64_t k = 0; k < npvd; ++k) {
+            const double S = r.get<double>();
+            run.pvd.emplace_back(S, r.get_string());
+        }
+        r.get(run.series_bytes);
+        r.get(run.log_bytes);
+        r.get(run.surface_y_mean);
+        expect_tag(r, "end");
+        if (r.remaining() != 0) bad(fmt::format("{} bytes left over", r.remaining()));
+    } catch (const CheckpointError&) {
+        throw;
+    } catch (const IoError& e) {
+        throw CheckpointError(e.what());
+    }
+
+    // Boundaries first (they can still fail on a short blob): keep their old
+    // state to put back, so a refusal leaves sim unchanged.
+    std::vector<std::string> old_state;
+    for (const auto& b : sim.boundaries) {
+        ByteWriter w;
+        b->save_state(w);
+        old_state.push_back(std::move(w.bytes()));
+    }
+    std::size_t done = 0;
+    try {
+        for (; done < sim.boundaries.size(); ++done) {
+            ByteReader br(boundary_state[done]);
+            sim.boundaries[done]->load_state(br);
+            if (br.remaining() != 0) bad(fmt::format("boundary '{}' left {} bytes unread", sim.boundaries[done]->name(), br.remaining()));
+        }
+    } catch (const std::exception& e) {
+        for (std::size_t k = 0; k <= std::min(done, sim.boundaries.size() - 1); ++k) {
+            ByteReader br(old_state[k]);
+            sim.boundaries[k]->load_state(br);
+        }
+        throw CheckpointError(e.what());
+    }
+
+    sim.particles = std::move(p);
+    sim.contacts = std::move(c);
+    sim.wall_contacts = std::move(wc);
+    sim.walls = std::move(walls);
+    sim.step_count = step;
+    sim.time = time;
+    SimulationAccess::restore(sim, std::move(internals));
+    run_out = std::move(run);
+}
+
+std::vector<std::pair<std::uint64_t, std::string>> list_checkpoints(const std::string& dir) {
+    namespace fs = std::filesystem;
+    std::vector<std::pair<std::uint64_t, std::string>> out;
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) return out;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.size() <= 9 || name.rfind("ckpt-", 0) != 0 || name.substr(name.size() - 4) != ".bin") continue;
+        std::uint64_t step = 0;
+        const char* first = name.data() + 5;
+        const char* last = name.data() + name.size() - 4;
+        const auto [ptr, err] = std::from_chars(first, last, step);
+        if (err != std::errc{} || ptr != last) continue;
+        out.emplace_back(step, e.path().string());
+    }
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    return out;
+}
+
+std::string write_checkpoint(const std::string& dir, std::uint64_t step, std::string_view bytes, int keep) {
+    make_dirs(dir);
+    const std::string path = fmt::format("{}/ckpt-{:012d}.bin", dir, step);
+    write_file_atomic(path, bytes);
+    const auto all = list_checkpoints(dir);
+    for (std::size_t k = static_cast<std::size_t>(keep); keep > 0 && k < all.size(); ++k) {
+        std::error_code ec;
+        std::filesystem::remove(all[k].second, ec);  // a leftover old checkpoint is harmless
+    }
+    return path;
+}
+
+std::string restore_newest_checkpoint(const std::string& dir, std::uint64_t expected_config_hash, Simulation& sim,
+                                      RunLoopState& run, std::vector<std::string>* notes) {
+    const auto all = list_checkpoints(dir);
+    std::string reasons;
+    for (const auto& [step, path] : all) {
+        try {
+            const std::string bytes = read_file(path);
+            decode_checkpoint(bytes, expected_config_hash, sim, run);
+            return path;
+        } catch (const ConfigError& e) {
+            throw ConfigError(fmt::format("{}: {}", path, e.what()));
+        } catch (const IoError& e) {
+            const std::string line = fmt::format("{}: not used: {}", path, e.what());
+            if (notes) notes->push_back(line);
+            reasons += "; " + line;
+        }
+    }
+    if (all.empty()) throw CheckpointError(fmt::format("no checkpoint (ckpt-<step>.bin) in {}", dir));
+    throw CheckpointError(fmt::format("no usable checkpoint in {}{}", dir, reasons));
+}
+
+}  // namespace orodem

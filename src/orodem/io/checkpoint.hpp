@@ -1,0 +1,96 @@
+// Checkpoints (SPEC §5): the whole state a run needs to continue bit for bit.
+//
+// File layout (ckpt-<step>.bin in RUN_DIR/checkpoint/), all values raw bytes
+// as stored in memory (little-endian on every supported machine):
+//   magic "ORODEMCK" | u32 format version | string program version |
+//   u64 config hash | u64 step | u64 payload size | u64 payload checksum |
+//   u64 header checksum (FNV-1a over every header byte before it) | payload
+// The payload holds, in order: every ParticleStore column in current slot
+// order (ParticleStore::for_each_column, so a new column is saved without
+// touching this file), slot_of_id, the ContactStore and WallContactStore
+// arrays, every wall (they move), step_count, time, the Simulation's private
+// state (PairBuilder x_ref and rebuild count, wall_shift, max_disp2,
+// force_rebuild; via SimulationAccess), each boundary's own state (by name,
+// Boundary::save_state), and the run loop's state (RunLoopState).
+//
+// Loading checks magic, version, config hash, sizes and both checksums, and
+// validates every index before anything of the Simulation is replaced: a
+// refused file leaves the Simulation as it was.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "orodem/core/error.hpp"
+#include "orodem/core/vec2.hpp"
+#include "orodem/engine/simulation.hpp"
+#include "orodem/io/config.hpp"
+
+namespace orodem {
+
+inline constexpr std::uint32_t kCheckpointVersion = 1;
+
+/// A checkpoint that cannot be used: corrupt, truncated, another format
+/// version, not a checkpoint. what() says which. (An I/O problem: exit 4.)
+class CheckpointError : public IoError {
+public:
+    using IoError::IoError;
+};
+
+/// The run loop's own state (apps/orodem run_wedge) at the checkpoint.
+struct RunLoopState {
+    std::uint64_t outputs = 0;                          // output rows written so far
+    std::vector<Vec2> x_then;                           // positions by id at the last output
+    std::vector<std::pair<double, std::string>> pvd;    // run.pvd entries (S, file)
+    std::uint64_t series_bytes = 0;                     // series.csv length [bytes]
+    std::uint64_t log_bytes = 0;                        // log.txt length [bytes]
+    double surface_y_mean = 0.0;                        // undeformed surface (measured on the layer) [m]
+};
+
+/// FNV-1a 64 of the resolved config text (to_toml) with run.threads set to 0:
+/// the thread count does not change results, so a run may resume at another.
+std::uint64_t config_hash(const Config& c);
+
+/// The checkpoint file bytes of sim and run.
+std::string encode_checkpoint(const Simulation& sim, const RunLoopState& run, std::uint64_t config_hash);
+
+/// Header facts, readable without restoring (for messages and listings).
+struct CheckpointInfo {
+    std::uint32_t version = 0;
+    std::string program_version;
+    std::uint64_t config_hash = 0;
+    std::uint64_t step = 0;
+};
+
+/// Checks the header and checksums; throws CheckpointError naming the problem,
+/// or ConfigError when the config hash differs from expected_config_hash.
+CheckpointInfo verify_checkpoint(std::string_view bytes, std::uint64_t expected_config_hash);
+
+/// Restores a verified checkpoint into sim, which must have been built by the
+/// same scenario code as the saved one (same walls and boundaries; particles
+/// and contacts are replaced). Does not call sim.initialize(). Throws as
+/// verify_checkpoint, or CheckpointError when the contents do not fit sim;
+/// on any throw sim and run are unchanged.
+void decode_checkpoint(std::string_view bytes, std::uint64_t expected_config_hash, Simulation& sim,
+                       RunLoopState& run);
+
+/// Writes bytes to DIR/ckpt-<step>.bin atomically, then deletes all but the
+/// newest `keep` checkpoints (only after the new one is in place). Returns
+/// the path (keep <= 0: delete none). Throws IoError; a failed write leaves
+/// older checkpoints intact.
+std::string write_checkpoint(const std::string& dir, std::uint64_t step, std::string_view bytes, int keep = 2);
+
+/// Checkpoint files in dir (ckpt-<step>.bin), newest (highest step) first.
+std::vector<std::pair<std::uint64_t, std::string>> list_checkpoints(const std::string& dir);
+
+/// Restores the newest checkpoint of dir that passes every check, falling
+/// back to older ones; `notes` gets one line per file skipped and why.
+/// Returns the path used. Throws CheckpointError when none is usable, and
+/// ConfigError (not falling back) when a checkpoint was made from another config.
+std::string restore_newest_checkpoint(const std::string& dir, std::uint64_t expected_config_hash, Simulation& sim,
+                                      RunLoopState& run, std::vector<std::string>* notes = nullptr);
+
+}  // namespace orodem

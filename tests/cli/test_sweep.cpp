@@ -1,0 +1,63 @@
+// `orodem sweep`: one run per value into DIR/<key>=<value>/, the settled
+// layer settled once and reused, and the overlay plot at the end.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+int run(const std::string& cmd, std::string* out = nullptr) {
+    FILE* f = popen((cmd + " 2>&1").c_str(), "r");
+    if (!f) return -1;
+    char buf[4096];
+    std::string text;
+    while (std::fgets(buf, sizeof buf, f)) text += buf;
+    const int st = pclose(f);
+    if (out) *out = text;
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+}  // namespace
+
+TEST(Sweep, OneRunPerValueReusingTheLayerThenPlots) {
+    char tmpl[] = "/tmp/orodem-sweep-XXXXXX";
+    ASSERT_NE(mkdtemp(tmpl), nullptr);
+    const fs::path dir = tmpl;
+    {
+        std::ofstream cfg(dir / "tiny.toml");
+        cfg << "[run]\nexperiment = \"exp1\"\n"
+               "[wedge]\nv = 0.2\ns_max = 0.5\noutput_ds = 0.25\npro_margin = 3.0\nretro_length = 3.0\n"
+               "[packing]\nh0 = 6.0\ncache_dir = \"" << (dir / "cache").string() << "\"\n";
+    }
+    std::string out;
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " sweep " + (dir / "tiny.toml").string() +
+                  " --vary wedge.mu_bp=0.1,0.5 --out " + (dir / "sw").string() + " --threads 1", &out), 0)
+        << out;
+    for (const char* v : {"0.1", "0.5"}) {
+        const fs::path r = dir / "sw" / (std::string("wedge.mu_bp=") + v);
+        ASSERT_TRUE(fs::exists(r / "series.csv")) << r;
+        EXPECT_NE(slurp(r / "config.toml").find(std::string("mu_bp = ") + v), std::string::npos) << r;
+    }
+    // The second member reuses the layer the first one settled.
+    EXPECT_NE(slurp(dir / "sw" / "wedge.mu_bp=0.1" / "log.txt").find("settling a new packing"), std::string::npos);
+    EXPECT_NE(slurp(dir / "sw" / "wedge.mu_bp=0.5" / "log.txt").find("packing reused"), std::string::npos);
+    EXPECT_TRUE(fs::exists(dir / "sw" / "plots.png"));
+    // A bad value anywhere in the list is refused before any run starts.
+    EXPECT_EQ(run(std::string(ORODEM_EXE) + " sweep " + (dir / "tiny.toml").string() +
+                  " --vary wedge.mu_bp=0.1,-1 --out " + (dir / "sw2").string() + " --threads 1", &out), 2)
+        << out;
+    EXPECT_FALSE(fs::exists(dir / "sw2"));
+    fs::remove_all(dir);
+}

@@ -1,134 +1,144 @@
 // Phase A in SIMD lanes; see pair_kernel.hpp for the bit-identity argument.
 // Every expression below mirrors, operation for operation, eval_contact() in
 // physics/contact_law.hpp and the scalar pair loop this kernel replaced; keep
-// them in step (tests/unit/test_pair_kernel.cpp compares the two on random
-// pairs bit for bit; the LAMMPS reference and determinism tests would catch
-// a drift too).
+// them in step (tests/unit/test_pair_kernel.cpp compares the two bit for bit
+// on the benchmark pile, with fixed discs, bonds, sliding and both damping
+// forms; the LAMMPS reference and determinism tests would catch a drift too).
+//
+// Cost model (30,000-disc pile, Zen 4): about 100 instructions per pair, of
+// which two thirds load the two discs' columns into lanes and store the
+// results; the arithmetic is a third. Hence four lanes (wider vectors only
+// add shuffles), contiguous loads/stores of the pair columns, and the sliding
+// branch skipped when no lane of a block slides (about nine blocks in ten).
 #include "orodem/engine/pair_kernel.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <utility>
 
-// Vectors in by-value helpers change the calling convention between the ISA
-// clones; they are all inlined, so the note is moot.
-#pragma GCC diagnostic ignored "-Wpsabi"
+#include "orodem/core/simd.hpp"
+#include "orodem/neighbor/pair_builder.hpp"
 
 namespace orodem {
 namespace {
 
+using simd::v2d;
+using vd = simd::v4d;
+using vm = simd::v4m;
+using simd::lanes;
 constexpr std::size_t kLanes = 4;
-using vd = double __attribute__((vector_size(kLanes * sizeof(double))));
-using vm = decltype(vd{} < vd{});  // lane mask: all bits set where true
 
-template <class F, std::size_t... L>
-[[gnu::always_inline]] inline vd lanes_impl(F&& f, std::index_sequence<L...>) {
-    return vd{f(L)...};
-}
-/// {f(0), f(1), ..., f(kLanes-1)}
-template <class F>
-[[gnu::always_inline]] inline vd lanes(F&& f) {
-    return lanes_impl(f, std::make_index_sequence<kLanes>{});
-}
-[[gnu::always_inline]] inline vd vsqrt(vd a) {
-    return lanes([&](std::size_t l) { return std::sqrt(a[l]); });
-}
-[[gnu::always_inline]] inline vd vfabs(vd a) {
-    const vm magnitude = vm{} + 0x7fffffffffffffffLL;
-    return reinterpret_cast<vd>(reinterpret_cast<vm>(a) & magnitude);
-}
-
-/// Pairs per chunk: gathered into SoA scratch first (short dependency
-/// chains, many loads), then evaluated in lanes from contiguous scratch
-/// (long chains of arithmetic), so that the CPU overlaps many pairs.
-constexpr std::size_t kChunk = 32;
-static_assert(kChunk % kLanes == 0);
-
-struct alignas(64) Scratch {
-    double dx[kChunk], dy[kChunk], r2[kChunk], rsum[kChunk], vrx[kChunk], vry[kChunk], spin[kChunk];
-    double mi[kChunk], mj[kChunk], imi[kChunk], imj[kChunk], xi_x[kChunk], xi_y[kChunk], bonded[kChunk];
-    double fx[kChunk], fy[kChunk], c[kChunk];
+/// The inputs of kLanes pairs, one pair per lane.
+struct Block {
+    vd xix, xiy, xjx, xjy, shift, ri, rj, bonded, mi, mj, imi, imj, vix, viy, vjx, vjy, wi, wj, xi_x, xi_y;
+};
+/// The outputs.
+struct Out {
+    vd fx, fy, c, xi_x, xi_y;
 };
 
-[[gnu::always_inline]] inline vd load(const double* a) {
-    vd r;
-    __builtin_memcpy(&r, a, sizeof r);
-    return r;
+[[gnu::always_inline]] inline vd cat(v2d a, v2d b) { return __builtin_shufflevector(a, b, 0, 1, 2, 3); }
+[[gnu::always_inline]] inline vd even(vd a, vd b) { return __builtin_shufflevector(a, b, 0, 2, 4, 6); }
+[[gnu::always_inline]] inline vd odd(vd a, vd b) { return __builtin_shufflevector(a, b, 1, 3, 5, 7); }
+[[gnu::always_inline]] inline bool any(vm m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
+
+/// Lanes l of {x, y} columns from a Vec2 array at four indices.
+template <class Index>
+[[gnu::always_inline]] inline void gather_vec2(const Vec2* a, const Index* idx, vd& xs, vd& ys) {
+    const vd lo = cat(simd::load<v2d>(a + idx[0]), simd::load<v2d>(a + idx[1]));
+    const vd hi = cat(simd::load<v2d>(a + idx[2]), simd::load<v2d>(a + idx[3]));
+    xs = even(lo, hi);
+    ys = odd(lo, hi);
 }
-[[gnu::always_inline]] inline void store(double* a, vd v) { __builtin_memcpy(a, &v, sizeof v); }
 
-/// Pairs [k0, k0 + count), count <= kChunk.
-[[gnu::always_inline]] inline void eval_chunk(const PairKernelData& d, std::size_t k0, std::size_t count,
-                                              Scratch& t) {
-    // Gather: the pair's geometry and kinematics, as the scalar loop computed them.
-    const double W = d.period_x;
-    for (std::size_t l = 0; l < kChunk; ++l) {
-        const std::size_t k = k0 + (l < count ? l : count - 1);  // pad with the last pair
-        const std::uint32_t i = d.i[k], j = d.j[k];
-        const double dx = d.x[i].x - (d.x[j].x + d.shift[k] * W);
-        const double dy = d.x[i].y - (d.x[j].y + 0.0);
-        t.dx[l] = dx;
-        t.dy[l] = dy;
-        t.r2[l] = dx * dx + dy * dy;
-        const double ri = d.radius[i], rj = d.radius[j];
-        t.rsum[l] = ri + rj;
-        t.vrx[l] = d.v[i].x - d.v[j].x;
-        t.vry[l] = d.v[i].y - d.v[j].y;
-        t.spin[l] = ri * d.omega[i] + rj * d.omega[j];
-        t.mi[l] = d.mass[i];
-        t.mj[l] = d.mass[j];
-        t.imi[l] = d.inv_mass[i];
-        t.imj[l] = d.inv_mass[j];
-        t.xi_x[l] = d.xi[k].x;
-        t.xi_y[l] = d.xi[k].y;
-        t.bonded[l] = d.bonded[k];
+/// Loads a block; `K` are the pair indices of the lanes.
+[[gnu::always_inline]] inline Block load_block(const PairKernelData& d, const std::size_t* K, bool contiguous) {
+    std::uint32_t I[kLanes], J[kLanes];
+    for (std::size_t l = 0; l < kLanes; ++l) {
+        I[l] = d.i[K[l]];
+        J[l] = d.j[K[l]];
     }
+    Block b;
+    gather_vec2(d.x, I, b.xix, b.xiy);
+    gather_vec2(d.x, J, b.xjx, b.xjy);
+    gather_vec2(d.v, I, b.vix, b.viy);
+    gather_vec2(d.v, J, b.vjx, b.vjy);
+    b.ri = lanes([&](std::size_t l) { return d.radius[I[l]]; });
+    b.rj = lanes([&](std::size_t l) { return d.radius[J[l]]; });
+    b.wi = lanes([&](std::size_t l) { return d.omega[I[l]]; });
+    b.wj = lanes([&](std::size_t l) { return d.omega[J[l]]; });
+    b.mi = lanes([&](std::size_t l) { return d.mass[I[l]]; });
+    b.mj = lanes([&](std::size_t l) { return d.mass[J[l]]; });
+    b.imi = lanes([&](std::size_t l) { return d.inv_mass[I[l]]; });
+    b.imj = lanes([&](std::size_t l) { return d.inv_mass[J[l]]; });
+    // Periodic images and bonds are rare in a block (all four bytes zero): then
+    // skip the byte-to-double conversions.
+    std::uint32_t shift4 = 1, bonded4 = 1;
+    if (contiguous) {
+        __builtin_memcpy(&shift4, d.shift + K[0], sizeof shift4);
+        __builtin_memcpy(&bonded4, d.bonded + K[0], sizeof bonded4);
+    }
+    b.shift = shift4 == 0 ? vd{} : lanes([&](std::size_t l) { return static_cast<double>(d.shift[K[l]]); });
+    b.bonded = bonded4 == 0 ? vd{} : lanes([&](std::size_t l) { return static_cast<double>(d.bonded[K[l]]); });
+    if (contiguous) {
+        const vd a = simd::load<vd>(d.xi + K[0]), c = simd::load<vd>(d.xi + K[0] + 2);
+        b.xi_x = even(a, c);
+        b.xi_y = odd(a, c);
+    } else {
+        gather_vec2(d.xi, K, b.xi_x, b.xi_y);
+    }
+    return b;
+}
+
+/// The law for the lanes: eval_contact() and the scalar loop, operation for operation.
+[[gnu::always_inline]] inline Out compute_block(const PairKernelData& d, const Block& b) {
+    const vm bonded = b.bonded != 0.0;
+    // d = x_i - (x_j + (shift W, 0)); touching unless r² >= (R_i + R_j)² (bonds always).
+    const vd dx = b.xix - (b.xjx + b.shift * d.period_x);
+    const vd dy = b.xiy - (b.xjy + 0.0);
+    const vd r2 = dx * dx + dy * dy;
+    const vd rsum = b.ri + b.rj;
+    const vm touch = bonded | ~(r2 >= rsum * rsum);
+    const vd r = simd::sqrt(r2);
+    // A fixed disc is infinitely heavy: the pair's effective mass is the free disc's own.
+    const vd m_eff = b.imj == 0.0 ? b.mi : (b.imi == 0.0 ? b.mj : b.mi * b.mj / (b.mi + b.mj));
+    const vd s = 1.0 / r;
+    const vd nx = s * dx, ny = s * dy;
+    const vd delta = rsum - r;
+    const vd vrx = b.vix - b.vjx, vry = b.viy - b.vjy;
+    const vd spin = b.ri * b.wi + b.rj * b.wj;
+
+    // Normal part.
     const LawParams& p = d.law;
-    // γ_s / k_s; +0 exactly when there is no tangential dashpot (then no division).
-    const bool no_dashpot =
-        p.damp_mass_s == 0.0 && !std::signbit(p.damp_mass_s) && p.damp_sqrt_s == 0.0 && p.k_s > 0.0;
-    for (std::size_t l = 0; l < kChunk; l += kLanes) {
-        const vd dx = load(t.dx + l), dy = load(t.dy + l), r2 = load(t.r2 + l), rsum = load(t.rsum + l);
-        const vm bonded = load(t.bonded + l) != 0.0;
-        // Touching unless r² >= (R_i + R_j)² (bonds always).
-        const vm touch = bonded | ~(r2 >= rsum * rsum);
-        const vd r = vsqrt(r2);
-        const vd mi = load(t.mi + l), mj = load(t.mj + l);
-        // A fixed disc is infinitely heavy: the pair's effective mass is the free disc's own.
-        const vd m_eff = load(t.imj + l) == 0.0 ? mi : (load(t.imi + l) == 0.0 ? mj : mi * mj / (mi + mj));
-        const vd s = 1.0 / r;
-        const vd nx = s * dx, ny = s * dy;
-        const vd delta = rsum - r;
-        const vd vrx = load(t.vrx + l), vry = load(t.vry + l), spin = load(t.spin + l);
+    const vd v_n = vrx * nx + vry * ny;
+    const vd vtx = (vrx - v_n * nx) + spin * ny;
+    const vd vty = (vry - v_n * ny) + spin * (-nx);
+    vd gamma_n = p.damp_mass_n * m_eff;
+    if (p.damp_sqrt_n != 0.0) gamma_n += p.damp_sqrt_n * simd::sqrt(m_eff);
+    vd f_n = p.k_n * delta - gamma_n * v_n;
+    if (p.clamp_normal) f_n = (~bonded & (f_n < 0.0)) ? vd{} : f_n;
 
-        // eval_contact, normal part.
-        const vd v_n = vrx * nx + vry * ny;
-        const vd vtx = (vrx - v_n * nx) + spin * ny;
-        const vd vty = (vry - v_n * ny) + spin * (-nx);
-        vd gamma_n = p.damp_mass_n * m_eff;
-        if (p.damp_sqrt_n != 0.0) gamma_n += p.damp_sqrt_n * vsqrt(m_eff);
-        vd f_n = p.k_n * delta - gamma_n * v_n;
-        if (p.clamp_normal) f_n = (~bonded & (f_n < 0.0)) ? vd{} : f_n;
-
-        // Tangential spring, projected onto the tangent line, with the Coulomb
-        // limit for unbonded pairs.
-        vd xi_x = load(t.xi_x + l), xi_y = load(t.xi_y + l);
-        vd ftx{}, fty{};
-        if (p.tangential) {
-            xi_x = xi_x + d.dt * vtx;
-            xi_y = xi_y + d.dt * vty;
-            const vd along = xi_x * nx + xi_y * ny;
-            xi_x = xi_x - along * nx;
-            xi_y = xi_y - along * ny;
-            vd gamma_s = p.damp_mass_s * m_eff;
-            if (p.damp_sqrt_s != 0.0) gamma_s += p.damp_sqrt_s * vsqrt(m_eff);
-            ftx = (-p.k_s) * xi_x - gamma_s * vtx;
-            fty = (-p.k_s) * xi_y - gamma_s * vty;
-            const vd f_max = p.mu * vfabs(f_n) + p.cohesion;
-            const vd ft2 = ftx * ftx + fty * fty;
-            const vm slide = ~bonded & (ft2 > f_max * f_max);
+    // Tangential spring, projected onto the tangent line, with the Coulomb
+    // limit for unbonded pairs.
+    vd xi_x = b.xi_x, xi_y = b.xi_y;
+    vd ftx{}, fty{};
+    if (p.tangential) {
+        xi_x = xi_x + d.dt * vtx;
+        xi_y = xi_y + d.dt * vty;
+        const vd along = xi_x * nx + xi_y * ny;
+        xi_x = xi_x - along * nx;
+        xi_y = xi_y - along * ny;
+        vd gamma_s = p.damp_mass_s * m_eff;
+        if (p.damp_sqrt_s != 0.0) gamma_s += p.damp_sqrt_s * simd::sqrt(m_eff);
+        ftx = (-p.k_s) * xi_x - gamma_s * vtx;
+        fty = (-p.k_s) * xi_y - gamma_s * vty;
+        const vd f_max = p.mu * simd::fabs(f_n) + p.cohesion;
+        const vd ft2 = ftx * ftx + fty * fty;
+        const vm slide = ~bonded & (ft2 > f_max * f_max);
+        if (any(slide)) {  // about one block in ten: skip the sqrt and divisions otherwise
             // Sliding: scale F_t onto the limit and ξ so the spring (plus the dashpot) sits on it.
-            const vd ratio = f_max / vsqrt(ft2);
+            const vd ratio = f_max / simd::sqrt(ft2);
+            // γ_s / k_s: +0 exactly when there is no tangential dashpot (then no division).
+            const bool no_dashpot =
+                p.damp_mass_s == 0.0 && !std::signbit(p.damp_mass_s) && p.damp_sqrt_s == 0.0 && p.k_s > 0.0;
             const vd g_over_k = no_dashpot ? vd{} : gamma_s / p.k_s;
             const vd dpx = g_over_k * vtx, dpy = g_over_k * vty;
             xi_x = slide ? ratio * (xi_x + dpx) - dpx : xi_x;
@@ -136,28 +146,149 @@ struct alignas(64) Scratch {
             ftx = slide ? ratio * ftx : ftx;
             fty = slide ? ratio * fty : fty;
         }
-        store(t.fx + l, touch ? f_n * nx + ftx : vd{});
-        store(t.fy + l, touch ? f_n * ny + fty : vd{});
-        store(t.c + l, touch ? nx * fty - ny * ftx : vd{});
-        store(t.xi_x + l, touch ? xi_x : vd{});  // history starts afresh at the next touch
-        store(t.xi_y + l, touch ? xi_y : vd{});
     }
-    for (std::size_t l = 0; l < count; ++l) {
+    Out o;
+    o.fx = touch ? f_n * nx + ftx : vd{};
+    o.fy = touch ? f_n * ny + fty : vd{};
+    o.c = touch ? nx * fty - ny * ftx : vd{};
+    o.xi_x = touch ? xi_x : vd{};  // history starts afresh at the next touch
+    o.xi_y = touch ? xi_y : vd{};
+    return o;
+}
+
+/// Four whole pairs at k0: contiguous loads and stores of the pair columns.
+[[gnu::always_inline]] inline void eval_block(const PairKernelData& d, std::size_t k0) {
+    const std::size_t K[kLanes] = {k0, k0 + 1, k0 + 2, k0 + 3};
+    const Out o = compute_block(d, load_block(d, K, true));
+    const vd f01 = __builtin_shufflevector(o.fx, o.fy, 0, 4, 1, 5);  // {fx0, fy0, fx1, fy1}
+    const vd f23 = __builtin_shufflevector(o.fx, o.fy, 2, 6, 3, 7);
+    simd::store(d.f + k0, f01);
+    simd::store(d.f + k0 + 2, f23);
+    simd::store(d.c + k0, o.c);
+    if (d.update_history) {
+        simd::store(d.xi + k0, __builtin_shufflevector(o.xi_x, o.xi_y, 0, 4, 1, 5));
+        simd::store(d.xi + k0 + 2, __builtin_shufflevector(o.xi_x, o.xi_y, 2, 6, 3, 7));
+    }
+}
+
+/// The last 1-3 pairs of a range: lanes past the end repeat the last pair and are not stored.
+[[gnu::always_inline]] inline void eval_tail(const PairKernelData& d, std::size_t k0, std::size_t valid) {
+    std::size_t K[kLanes];
+    for (std::size_t l = 0; l < kLanes; ++l) K[l] = k0 + (l < valid ? l : valid - 1);
+    const Out o = compute_block(d, load_block(d, K, false));
+    for (std::size_t l = 0; l < valid; ++l) {
         const std::size_t k = k0 + l;
-        d.f[k] = {t.fx[l], t.fy[l]};
-        d.c[k] = t.c[l];
-        if (d.update_history) d.xi[k] = {t.xi_x[l], t.xi_y[l]};
+        d.f[k] = {o.fx[l], o.fy[l]};
+        d.c[k] = o.c[l];
+        if (d.update_history) d.xi[k] = {o.xi_x[l], o.xi_y[l]};
+    }
+}
+
+/// Phase B for one disc.
+[[gnu::always_inline]] inline void gather_disc(const GatherData& d, std::size_t i) {
+    // f = m g, then f += f_k over the owned pairs and f -= f_k over the
+    // incoming ones, t -= R_i c_k over both, in that order. A disc has 0-6
+    // of each, so the first four of each are summed with no data-dependent
+    // branch (a mispredicted loop exit costs more than the sums): four slots
+    // are loaded and a slot past the end contributes the exact identity
+    // instead (x + -0.0 == x and x - +0.0 == x for every x, ±0 included), so
+    // the sums equal the plain loops bit for bit.
+    const double ri = d.radius[i];
+    const Vec2 g = d.mass[i] * d.gravity;
+    v2d acc = {g.x, g.y};
+    double t = 0.0;
+    const std::uint32_t ob = d.begin[i], oe = d.begin[i + 1];
+    const std::uint32_t ib = d.in_begin[i], ie = d.in_begin[i + 1];
+    if (ob + 4 <= d.npairs && ib + 4 <= d.npairs && oe - ob <= 4 && ie - ib <= 4) {
+        const double on = static_cast<double>(oe - ob), in = static_cast<double>(ie - ib);
+        const v2d minus0 = {-0.0, -0.0};
+        for (std::uint32_t s = 0; s < 4; ++s) {
+            const v2d fk = simd::load<v2d>(d.f + ob + s);
+            acc += (v2d{} + static_cast<double>(s)) < on ? fk : minus0;
+        }
+        const vd lane = {0.0, 1.0, 2.0, 3.0};
+        const vd oc = ri * (lane < on ? simd::load<vd>(d.c + ob) : vd{});
+        std::uint32_t k[4];
+        for (std::uint32_t s = 0; s < 4; ++s) k[s] = d.in_pair[ib + s];  // valid pair indices, used or not
+        for (std::uint32_t s = 0; s < 4; ++s) {
+            const v2d fk = simd::load<v2d>(d.f + k[s]);
+            acc -= (v2d{} + static_cast<double>(s)) < in ? fk : v2d{};
+        }
+        const vd ic = ri * (lane < in ? lanes([&](std::size_t l) { return d.c[k[l]]; }) : vd{});
+        t -= oc[0];
+        t -= oc[1];
+        t -= oc[2];
+        t -= oc[3];
+        t -= ic[0];
+        t -= ic[1];
+        t -= ic[2];
+        t -= ic[3];
+    } else {
+        // More than four of either (about one disc in a hundred), or the last discs.
+        Vec2 f = {acc[0], acc[1]};
+        for (std::uint32_t k = ob; k < oe; ++k) {
+            f += d.f[k];
+            t -= ri * d.c[k];
+        }
+        for (std::uint32_t q = ib; q < ie; ++q) {
+            f -= d.f[d.in_pair[q]];
+            t -= ri * d.c[d.in_pair[q]];
+        }
+        acc = v2d{f.x, f.y};
+    }
+    Vec2 f = {acc[0], acc[1]};
+    for (std::uint32_t k = d.wall_begin[i]; k < d.wall_begin[i + 1]; ++k) {
+        const Wall& w = d.walls[d.wall[k]];
+        Vec2 cp;
+        const bool over = wall_contact_point(w, d.x[i], cp);
+        const Vec2 dx = d.x[i] - cp;
+        const double r2 = norm2(dx);
+        if (!over || r2 >= ri * ri) {
+            d.wall_xi[k] = {};
+            d.wall_f[k] = {};
+            d.wall_c[k] = 0.0;
+            continue;
+        }
+        const double dist = std::sqrt(r2);
+        const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
+        const Vec2 v_wall = w.velocity + w.surface_speed * u;
+        const PairKinematics kin{(1.0 / dist) * dx, ri - dist, d.v[i] - v_wall, ri * d.omega[i], d.mass[i]};
+        Vec2 xi = d.wall_xi[k];
+        const PairForce pf = eval_contact<false>(d.wall_law[d.wall[k]], kin, d.dt, xi);
+        if (d.update_history) d.wall_xi[k] = xi;
+        d.wall_f[k] = pf.f;
+        d.wall_c[k] = pf.c;
+        f += pf.f;
+        t -= ri * pf.c;
+    }
+    d.force[i] = f;
+    d.torque[i] = t;
+    if (d.kick) {
+        // The second half kick, fused: the same operations as Simulation::kick().
+        const double half = 0.5 * d.dt;
+        d.v[i] += (half * d.inv_mass[i]) * f;
+        d.omega[i] += half * d.inv_inertia[i] * t;
     }
 }
 
 }  // namespace
 
+__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+void gather_range(const GatherData& dref, std::size_t begin, std::size_t end) {
+    const GatherData d = dref;
+    for (std::size_t i = begin; i < end; ++i) gather_disc(d, i);
+}
+
 // Built for the baseline ISA and, chosen at load time by the CPU, for
 // x86-64-v3 (AVX2) and x86-64-v4 (AVX-512): the same operations, wider registers.
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-void eval_pair_range(const PairKernelData& d, std::size_t begin, std::size_t end) {
-    Scratch t;
-    for (std::size_t k = begin; k < end; k += kChunk) eval_chunk(d, k, std::min(kChunk, end - k), t);
+void eval_pair_range(const PairKernelData& dref, std::size_t begin, std::size_t end) {
+    // A local copy: the kernel's stores (memcpy, may alias anything) then
+    // cannot force reloads of the column pointers.
+    const PairKernelData d = dref;
+    std::size_t k = begin;
+    for (; k + kLanes <= end; k += kLanes) eval_block(d, k);
+    if (k < end) eval_tail(d, k, end - k);
 }
 
 }  // namespace orodem

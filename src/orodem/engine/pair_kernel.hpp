@@ -1,5 +1,8 @@
-// Phase A of the step: the contact law for a range of candidate pairs,
-// evaluated kLanes pairs at a time in SIMD lanes.
+// The two force phases of the step as kernels over index ranges:
+//   A  eval_pair_range: the contact law for candidate pairs, four pairs at a
+//      time in SIMD lanes;
+//   B  gather_range: per disc, gravity + its pair forces + its wall contacts,
+//      then (optionally) the second half kick.
 //
 // Bit-identity: every lane performs exactly the IEEE operations, in the same
 // order, that eval_contact() and the scalar pair loop perform for one pair
@@ -7,13 +10,15 @@
 // forbids fused multiply-adds). Branches become selects: a lane computes
 // both sides and keeps the one the scalar code would take, so a pair's
 // result does not depend on its lane, its block or the ISA the kernel was
-// compiled for. The kernel is built for the baseline x86-64 ISA and, where
+// compiled for. The kernels are built for the baseline x86-64 ISA and, where
 // the CPU has them, for AVX2 and AVX-512 (function multiversioning; the same
-// results, wider vectors).
+// results, wider registers). tests/unit/test_pair_kernel.cpp checks phase A
+// against the per-pair loop bit for bit.
 //
-// Each pair writes only its own slots (f, c, ξ, and its two entries of the
-// per-disc force list `contrib`, see ContactStore), so any split of [begin,
-// end) among threads gives the same results.
+// Determinism: a pair writes only its own slots (f, c, ξ), a disc only its
+// own columns, and a disc sums its pair forces in a fixed order (owned pairs,
+// then incoming pairs, then walls), so any split of a range among threads
+// gives the same results.
 #pragma once
 
 #include <cstddef>
@@ -21,6 +26,7 @@
 
 #include "orodem/core/vec2.hpp"
 #include "orodem/physics/contact_law.hpp"
+#include "orodem/state/contacts.hpp"  // Wall
 
 namespace orodem {
 
@@ -49,5 +55,43 @@ struct PairKernelData {
 
 /// Evaluates pairs [begin, end): f[k], c[k] and (if update_history) ξ[k].
 void eval_pair_range(const PairKernelData& d, std::size_t begin, std::size_t end);
+
+/// Views for the gather (no ownership).
+struct GatherData {
+    // particles, by slot
+    const Vec2* x;
+    Vec2* v;
+    double* omega;
+    const double* radius;
+    const double* mass;
+    const double* inv_mass;
+    const double* inv_inertia;
+    Vec2* force;
+    double* torque;
+    // pairs (ContactStore): owned by slot s: begin[s] ..; incoming: in_pair[in_begin[s] ..]
+    const std::uint32_t* begin;
+    const std::uint32_t* in_begin;
+    const std::uint32_t* in_pair;
+    const Vec2* f;
+    const double* c;
+    std::size_t npairs;
+    // disc-wall candidates (WallContactStore) and the walls
+    const std::uint32_t* wall_begin;
+    const std::uint16_t* wall;
+    Vec2* wall_xi;
+    Vec2* wall_f;
+    double* wall_c;
+    const Wall* walls;
+    const LawParams* wall_law;  // per wall
+    Vec2 gravity;  // [m/s²]
+    double dt;     // [s]
+    bool update_history;
+    bool kick;     // also v += F/m dt/2, ω += T/I dt/2
+};
+
+/// Discs [begin, end): force = m g + Σ f over owned pairs - Σ f over incoming
+/// pairs (each in order) + wall contacts (evaluated here, in order), torque
+/// -R (Σ c ...) likewise term by term; then the half kick if d.kick.
+void gather_range(const GatherData& d, std::size_t begin, std::size_t end);
 
 }  // namespace orodem

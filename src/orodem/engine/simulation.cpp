@@ -70,89 +70,88 @@ void Simulation::rebuild_pairs() {
     force_rebuild_ = false;
 }
 
+namespace {
+
+/// [begin, end) of thread `tid` of `nth` over n items, cut at multiples of
+/// `align` items (no two threads write one cache line). Any split gives the
+/// same results; this one is contiguous per thread.
+std::pair<std::size_t, std::size_t> thread_range(std::size_t n, std::size_t align) {
+    const std::size_t nth = static_cast<std::size_t>(omp_get_num_threads());
+    const std::size_t tid = static_cast<std::size_t>(omp_get_thread_num());
+    const std::size_t chunks = (n + align - 1) / align;
+    return {std::min(n, align * (chunks * tid / nth)), std::min(n, align * (chunks * (tid + 1) / nth))};
+}
+
+}  // namespace
+
+PairKernelData Simulation::pair_kernel_data(bool update_history) {
+    ParticleStore& p = particles;
+    ContactStore& cs = contacts;
+    return {p.x.data(),      p.v.data(),        p.omega.data(), p.radius.data(), p.mass.data(),
+            p.inv_mass.data(), cs.i.data(),     cs.j.data(),    cs.shift.data(), cs.bonded.data(),
+            cs.xi.data(),    cs.f.data(),       cs.c.data(),    params.period_x, params.dt,
+            params.law,      update_history};
+}
+
+GatherData Simulation::gather_data(bool update_history, bool kick) {
+    ParticleStore& p = particles;
+    const ContactStore& cs = contacts;
+    WallContactStore& ws = wall_contacts;
+    return {p.x.data(),       p.v.data(),          p.omega.data(),       p.radius.data(),  p.mass.data(),
+            p.inv_mass.data(), p.inv_inertia.data(), p.force.data(),     p.torque.data(),  cs.begin.data(),
+            cs.in_begin.data(), cs.in_pair.data(),  cs.f.data(),         cs.c.data(),      cs.size(),
+            ws.begin.data(),  ws.wall.data(),      ws.xi.data(),         ws.f.data(),      ws.c.data(),
+            walls.data(),     wall_law_.data(),    params.gravity,       params.dt,        update_history,
+            kick};
+}
+
 template <bool kUpdateHistory>
 void Simulation::pair_forces() {
     // Phase A: every candidate pair evaluates the law into its own slots
-    // (engine/pair_kernel.hpp: SIMD lanes, bit-identical to one pair at a
-    // time). Each thread takes one contiguous range, cut at multiples of 64
-    // pairs so that no two threads write the same cache line.
-    ParticleStore& p = particles;
-    ContactStore& cs = contacts;
-    const PairKernelData kd{p.x.data(),      p.v.data(),      p.omega.data(), p.radius.data(),
-                            p.mass.data(),   p.inv_mass.data(), cs.i.data(),  cs.j.data(),
-                            cs.shift.data(), cs.bonded.data(), cs.xi.data(), cs.f.data(),
-                            cs.c.data(),     params.period_x, params.dt,     params.law,
-                            kUpdateHistory};
-    const std::size_t npairs = cs.size();
+    // (engine/pair_kernel.hpp: SIMD lanes, bit-identical to one pair at a time).
+    const PairKernelData kd = pair_kernel_data(kUpdateHistory);
+    const std::size_t npairs = contacts.size();
 #pragma omp parallel if(static_cast<long long>(npairs) >= kParallelMin)
     {
-        const std::size_t nth = static_cast<std::size_t>(omp_get_num_threads());
-        const std::size_t tid = static_cast<std::size_t>(omp_get_thread_num());
-        const std::size_t chunks = (npairs + 63) / 64;
-        const std::size_t b = std::min(npairs, 64 * (chunks * tid / nth));
-        const std::size_t e = std::min(npairs, 64 * (chunks * (tid + 1) / nth));
+        const auto [b, e] = thread_range(npairs, 64);
         if (b < e) eval_pair_range(kd, b, e);
     }
 }
 
 template <bool kUpdateHistory, bool kKick>
 void Simulation::gather_forces() {
-    ParticleStore& p = particles;
-    const ContactStore& cs = contacts;
-    WallContactStore& ws = wall_contacts;
-    const double dt = params.dt;
-    const double half = 0.5 * dt;
-    const Vec2 g = params.gravity;
-    // Phase B: per disc, fixed order: gravity, owned pairs, incoming pairs, walls.
-    const long long n = static_cast<long long>(p.size());
-#pragma omp parallel for schedule(static) if(n >= kParallelMin)
-    for (long long ii = 0; ii < n; ++ii) {
-        const std::size_t i = static_cast<std::size_t>(ii);
-        const double ri = p.radius[i];
-        Vec2 f = p.mass[i] * g;
-        double t = 0.0;
-        for (std::uint32_t k = cs.begin[i]; k < cs.begin[i + 1]; ++k) {
-            f += cs.f[k];
-            t -= ri * cs.c[k];
-        }
-        for (std::uint32_t q = cs.in_begin[i]; q < cs.in_begin[i + 1]; ++q) {
-            const std::uint32_t k = cs.in_pair[q];
-            f -= cs.f[k];
-            t -= ri * cs.c[k];
-        }
-        for (std::uint32_t k = ws.begin[i]; k < ws.begin[i + 1]; ++k) {
-            const Wall& w = walls[ws.wall[k]];
-            Vec2 cp;
-            const bool over = wall_contact_point(w, p.x[i], cp);
-            const Vec2 d = p.x[i] - cp;
-            const double r2 = norm2(d);
-            if (!over || r2 >= ri * ri) {
-                ws.xi[k] = {};
-                ws.f[k] = {};
-                ws.c[k] = 0.0;
-                continue;
-            }
-            const double r = std::sqrt(r2);
-            const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
-            const Vec2 v_wall = w.velocity + w.surface_speed * u;
-            const PairKinematics kin{(1.0 / r) * d, ri - r, p.v[i] - v_wall, ri * p.omega[i],
-                                     p.mass[i]};
-            Vec2 xi = ws.xi[k];
-            const PairForce pf = eval_contact<false>(wall_law_[ws.wall[k]], kin, dt, xi);
-            if constexpr (kUpdateHistory) ws.xi[k] = xi;
-            ws.f[k] = pf.f;
-            ws.c[k] = pf.c;
-            f += pf.f;
-            t -= ri * pf.c;
-        }
-        p.force[i] = f;
-        p.torque[i] = t;
-        if constexpr (kKick) {
-            // The second half kick, fused: the same operations as kick().
-            p.v[i] += (half * p.inv_mass[i]) * f;
-            p.omega[i] += half * p.inv_inertia[i] * t;
-        }
+    // Phase B: per disc, in a fixed order, gravity, its owned then incoming
+    // pairs' forces, its wall contacts (evaluated here), and with kKick the
+    // second half kick (engine/pair_kernel.hpp).
+    const GatherData gd = gather_data(kUpdateHistory, kKick);
+    const std::size_t n = particles.size();
+#pragma omp parallel if(static_cast<long long>(n) >= kParallelMin)
+    {
+        const auto [b, e] = thread_range(n, 8);
+        if (b < e) gather_range(gd, b, e);
     }
+}
+
+void Simulation::pair_forces_gather_kick() {
+    // Phases A and B and the second half kick in one parallel region: one
+    // fork and join fewer per step, which matters most when the machine is
+    // loaded (a thread that is not running holds up every join). The split
+    // into ranges is the one pair_forces() and gather_forces() use.
+    const PairKernelData kd = pair_kernel_data(true);
+    const GatherData gd = gather_data(true, true);
+    const std::size_t npairs = contacts.size(), n = particles.size();
+    double t_pairs_done = 0.0;
+#pragma omp parallel if(static_cast<long long>(n) >= kParallelMin)
+    {
+        const auto [pb, pe] = thread_range(npairs, 64);
+        if (pb < pe) eval_pair_range(kd, pb, pe);
+#pragma omp barrier
+#pragma omp master
+        t_pairs_done = omp_get_wtime();
+        const auto [b, e] = thread_range(n, 8);
+        if (b < e) gather_range(gd, b, e);
+    }
+    pairs_done_at_ = t_pairs_done;
 }
 
 // Out-of-line instances for bench/bench_kernels.cpp (KernelBench).
@@ -223,14 +222,16 @@ void Simulation::step() {
 
     if (needs_rebuild(wall_move)) rebuild_pairs();
     lap(times_.rebuild);
-    pair_forces<true>();
-    lap(times_.pair_forces);
     if (boundaries.empty()) {
         // No hook can change the forces between the gather and the kick:
         // kick each disc right after summing its force (one pass, not two).
-        gather_forces<true, true>();
+        pair_forces_gather_kick();
+        times_.pair_forces += pairs_done_at_ - t0;
+        t0 = pairs_done_at_;
         lap(times_.gather);
     } else {
+        pair_forces<true>();
+        lap(times_.pair_forces);
         gather_forces<true, false>();
         lap(times_.gather);
         for (auto& b : boundaries) b->add_forces(*this);

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "orodem/engine/boundary.hpp"
+#include "orodem/engine/pair_kernel.hpp"
 #include "orodem/neighbor/pair_builder.hpp"
 #include "orodem/physics/contact_law.hpp"
 #include "orodem/state/contacts.hpp"
@@ -116,6 +117,9 @@ private:
     template <bool kUpdateHistory, bool kKick>
     void gather_forces();    // phase B; kKick: also the second half kick
     void kick();             // second half kick
+    void pair_forces_gather_kick();  // phases A, B and kick() in one parallel region
+    PairKernelData pair_kernel_data(bool update_history);
+    GatherData gather_data(bool update_history, bool kick);
     template <bool kUpdateHistory>
     void compute_forces();   // phases A and B, no kick
     PairBuilder::Settings builder_settings() const;
@@ -126,6 +130,7 @@ private:
     double max_disp2_ = 0.0;          // largest |x - x_ref|² since the last rebuild [m²]
     bool force_rebuild_ = false;
     PhaseTimes times_;
+    double pairs_done_at_ = 0.0;      // omp_get_wtime() when phase A ended (phase timers)
 };
 
 /// Builds the bond topology (all pairs inside each cluster) from cluster ids.

@@ -254,6 +254,22 @@ void decode_checkpoint(std::string_view bytes, std::uint64_t expected_config_has
         check_offsets(c.in_begin, n, m, "contacts.in_begin");
         for (std::size_t k = 0; k < m; ++k)
             if (c.i[k] >= n || c.j[k] >= n || c.in_pair[k] >= m) bad(fmt::format("contact {} indexes out of range", k));
+        // Cluster ids: -1 (a lone disc) or below n, and as many pairs inside clusters
+        // as bonded contacts (the pair list holds every bond), which bounds the
+        // bond topology built from them on restore. Found by tests/fuzz/fuzz_checkpoint.
+        std::vector<std::uint64_t> members(n, 0);
+        for (std::size_t s = 0; s < n; ++s) {
+            const std::int32_t cl = p.cluster[s];
+            if (cl < -1 || (cl >= 0 && static_cast<std::size_t>(cl) >= n))
+                bad(fmt::format("cluster id {} at slot {} (of {} discs)", cl, s, n));
+            if (cl >= 0) ++members[static_cast<std::size_t>(cl)];
+        }
+        std::uint64_t bond_pairs = 0;  // n <= 2^32 (ids are u32), so no overflow
+        for (const std::uint64_t k : members)
+            if (k > 1) bond_pairs += k * (k - 1) / 2;
+        const auto bonded = static_cast<std::uint64_t>(
+            std::count_if(c.bonded.begin(), c.bonded.end(), [](std::uint8_t b) { return b != 0; }));
+        if (bond_pairs != bonded) bad(fmt::format("{} bonds in the clusters, {} bonded contacts", bond_pairs, bonded));
 
         expect_tag(r, "wall_contacts");
         r.get_vector(wc.wall); r.get_vector(wc.key); r.get_vector(wc.xi); r.get_vector(wc.f); r.get_vector(wc.c);

@@ -177,11 +177,101 @@ private:
     std::set<std::string> used_;
 };
 
+/// toml++ 3.3.0 (Debian 12) has undefined behaviour (it reaches TOML_UNREACHABLE
+/// in is_non_ascii_horizontal_whitespace; marzer/tomlplusplus#190, #295) when
+/// it asks whether some non-ASCII characters (U+00A1-U+0499 among others) are
+/// whitespace. Found by tests/fuzz/fuzz_config. It asks that of characters
+/// outside strings and comments, in the look-ahead over a bare value (which
+/// runs on through quotes), in keys, and after a backslash in a multi-line
+/// basic string. So non-ASCII text is let through to toml++ only in comments
+/// and in a string value written `key = "..."` (the line's first '=', then
+/// spaces or tabs, not inside an array or inline table), and not next to a
+/// backslash of a multi-line basic string. Valid TOML with non-ASCII
+/// characters elsewhere (quoted keys, strings in arrays) is refused too; the
+/// config schema has no use for it. Returns the offset of the first such
+/// character, or npos.
+std::size_t non_ascii_toml_cannot_take(std::string_view s) {
+    auto at = [&](std::size_t k) { return k < s.size() ? s[k] : '\0'; };
+    auto high = [](char c) { return static_cast<unsigned char>(c) >= 0x80; };
+    auto space = [](char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; };
+    constexpr std::size_t none = std::string_view::npos;
+    std::size_t k = s.starts_with("\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte order mark, which toml++ skips
+    int equals = 0;         // '=' outside strings on this logical line
+    int depth = 0;          // brackets and braces opened after the line's first '='
+    bool after_eq = false;  // only spaces and tabs since the last '='
+    while (k < s.size()) {
+        const char c = s[k];
+        if (high(c)) return k;
+        if (c == '#') {  // a comment, to the end of the line
+            while (k < s.size() && s[k] != '\n') ++k;
+            continue;
+        }
+        if (c == '"' || c == '\'') {
+            const bool value = equals == 1 && depth == 0 && after_eq;  // non-ASCII allowed inside
+            after_eq = false;
+            if (at(k + 1) == c && at(k + 2) == c) {  // multi-line, closed by three to five quotes
+                for (k += 3; k < s.size();) {
+                    if (s[k] == c && at(k + 1) == c && at(k + 2) == c) {
+                        while (at(k) == c) ++k;
+                        break;
+                    }
+                    if (high(s[k]) && !value) return k;
+                    if (c == '"' && s[k] == '\\') {  // an escape, or a line-ending backslash
+                        ++k;
+                        if (high(at(k))) return k;
+                        if (!space(at(k))) {
+                            ++k;
+                            continue;
+                        }
+                        while (space(at(k))) ++k;
+                        if (high(at(k))) return k;
+                        continue;
+                    }
+                    ++k;
+                }
+            } else {  // one line, to the closing quote (or the end of the line: toml++ refuses it)
+                for (++k; k < s.size() && s[k] != c && s[k] != '\n'; ++k) {
+                    if (c == '"' && s[k] == '\\') ++k;
+                    if (k < s.size() && high(s[k]) && !value) return k;
+                }
+                if (at(k) == c) ++k;
+            }
+            continue;
+        }
+        if (c == '\n' && depth <= 0) {  // a new key = value line
+            equals = 0;
+            depth = 0;
+        }
+        if (c == '=') ++equals;
+        if (equals > 0 && (c == '[' || c == '{')) ++depth;
+        if (equals > 0 && (c == ']' || c == '}')) --depth;
+        after_eq = c == '=' || (after_eq && (c == ' ' || c == '\t'));
+        ++k;
+    }
+    return none;
+}
+
+/// Refuses (ConfigError) text with a character non_ascii_toml_cannot_take finds, naming file:line:col.
+void check_non_ascii(std::string_view text, const std::string& file) {
+    const std::size_t bad = non_ascii_toml_cannot_take(text);
+    if (bad == std::string_view::npos) return;
+    std::size_t line = 1, col = 1;
+    for (std::size_t k = 0; k < bad; ++k) {
+        if (text[k] == '\n') line += 1, col = 1;
+        else if ((static_cast<unsigned char>(text[k]) & 0xC0) != 0x80) col += 1;  // count characters, not bytes
+    }
+    throw ConfigError(fmt::format("{}:{}:{}: a non-ASCII character where orodem does not read one: only "
+                                  "comments and string values (key = \"...\") may have them", file, line, col));
+}
+
 /// Applies one override "a.b.c=value" to the parsed table.
 void apply_override(toml::table& root, const Override& o, const std::string& file) {
     toml::table parsed;
     try {
         const std::string doc = "v = " + o.second;
+        if (non_ascii_toml_cannot_take(doc) != std::string_view::npos)
+            throw ConfigError(fmt::format("--set {}={}: a non-ASCII character outside a string value", o.first,
+                                          o.second));
         parsed = toml::parse(std::string_view(doc), std::string_view("--set"));
     } catch (const toml::parse_error& e) {
         throw ConfigError(fmt::format("--set {}={}: value is not valid TOML ({}); strings need quotes, e.g. --set packing.kind='\"discs\"'",
@@ -357,6 +447,7 @@ Override parse_override(const std::string& text) {
 }
 
 Config parse_config(const std::string& text, const std::string& name, const std::vector<Override>& overrides) {
+    check_non_ascii(text, name);
     toml::table root;
     try {
         root = toml::parse(std::string_view(text), std::string_view(name));

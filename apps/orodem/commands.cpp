@@ -460,6 +460,7 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
     progress.done();
     log.line(fmt::format("finished: S = {:.3f} after {} steps, {:.1f} s wall", c.wedge.v * sim.time / h0,
                          sim.step_count, progress.elapsed()));
+    log.line("step phases (this process): " + phase_breakdown(sim.phase_times()));
     cmd_plot({dir}, dir + "/figures/plots.png");
     return 0;
 }

@@ -24,7 +24,16 @@ double deterministic_sum(std::size_t n, F&& term) {
         for (std::size_t k = 0; k < n; ++k) s += term(k);
         return s;
     }
-    std::vector<double> partial(nchunks, 0.0);
+    // Partials on the stack up to kStackChunks chunks (1M items): boundaries
+    // call this every step, and a step must not allocate.
+    constexpr std::size_t kStackChunks = 256;
+    double stack_partial[kStackChunks];
+    std::vector<double> heap_partial;
+    double* partial = stack_partial;
+    if (nchunks > kStackChunks) {
+        heap_partial.assign(nchunks, 0.0);
+        partial = heap_partial.data();
+    }
     const long long nc = static_cast<long long>(nchunks);
 #pragma omp parallel for schedule(static)
     for (long long c = 0; c < nc; ++c) {
@@ -35,7 +44,7 @@ double deterministic_sum(std::size_t n, F&& term) {
         partial[static_cast<std::size_t>(c)] = s;
     }
     double s = 0.0;
-    for (double p : partial) s += p;
+    for (std::size_t c = 0; c < nchunks; ++c) s += partial[c];
     return s;
 }
 

@@ -1,15 +1,17 @@
-// Phase A in SIMD lanes; see pair_kernel.hpp for the bit-identity argument.
-// Every expression below mirrors, operation for operation, eval_contact() in
-// physics/contact_law.hpp and the scalar pair loop this kernel replaced; keep
-// them in step (tests/unit/test_pair_kernel.cpp compares the two bit for bit
-// on the benchmark pile, with fixed discs, bonds, sliding and both damping
-// forms; the LAMMPS reference and determinism tests would catch a drift too).
+// Phases A and B of the step; see pair_kernel.hpp for the bit-identity and
+// determinism arguments. Every expression of phase A mirrors, operation for
+// operation, eval_contact() in physics/contact_law.hpp and the scalar pair
+// loop this kernel replaced; keep them in step (tests/unit/test_pair_kernel.cpp
+// compares them bit for bit on random packings with fixed discs, bonds,
+// sliding and three law variants; the LAMMPS reference and determinism tests
+// would catch a drift too).
 //
-// Cost model (30,000-disc pile, Zen 4): about 100 instructions per pair, of
-// which two thirds load the two discs' columns into lanes and store the
-// results; the arithmetic is a third. Hence four lanes (wider vectors only
-// add shuffles), contiguous loads/stores of the pair columns, and the sliding
-// branch skipped when no lane of a block slides (about nine blocks in ten).
+// Cost model (30,000-disc pile, Zen 4, docs/benchmarks.md): about 83
+// instructions per pair, of which two thirds load the two discs' columns
+// into lanes and store the results; the arithmetic is a third. Hence four
+// lanes (wider vectors only add shuffles), contiguous loads and stores of
+// the pair columns, and the sliding branch skipped when no lane of a block
+// slides (about nine blocks in ten).
 #include "orodem/engine/pair_kernel.hpp"
 
 #include <cmath>

@@ -164,6 +164,20 @@ void Simulation::compute_forces() {
     gather_forces<kUpdateHistory, false>();
 }
 
+namespace {
+
+/// The first half kick and the drift of disc i; returns |x - x_ref|².
+inline double kick_drift_disc(ParticleStore& p, const std::vector<Vec2>& x_ref, std::size_t i, double dt,
+                              double half) {
+    p.v[i] += (half * p.inv_mass[i]) * p.force[i];
+    p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
+    p.x[i] += dt * p.v[i];
+    p.theta[i] += dt * p.omega[i];
+    return norm2(p.x[i] - x_ref[i]);
+}
+
+}  // namespace
+
 void Simulation::kick_drift() {
     ParticleStore& p = particles;
     const double dt = params.dt;
@@ -172,15 +186,56 @@ void Simulation::kick_drift() {
     double max_d2 = max_disp2_;
     const long long n = static_cast<long long>(p.size());
 #pragma omp parallel for schedule(static) if(n >= kParallelMin) reduction(max : max_d2)
-    for (long long ii = 0; ii < n; ++ii) {
-        const std::size_t i = static_cast<std::size_t>(ii);
-        p.v[i] += (half * p.inv_mass[i]) * p.force[i];
-        p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
-        p.x[i] += dt * p.v[i];
-        p.theta[i] += dt * p.omega[i];
-        max_d2 = std::max(max_d2, norm2(p.x[i] - x_ref[i]));
+    for (long long ii = 0; ii < n; ++ii)
+        max_d2 = std::max(max_d2, kick_drift_disc(p, x_ref, static_cast<std::size_t>(ii), dt, half));
+    max_disp2_ = max_d2;
+}
+
+bool Simulation::step_in_one_region(double wall_move) {
+    // kick_drift(), the rebuild test, pair_forces_gather_kick() in one
+    // parallel region: two barriers a step (positions before phase A, forces
+    // before phase B) and one fork, the fewest the data flow allows, which
+    // matters most on a loaded machine (a thread that is not running holds
+    // up every barrier). Every thread takes the same rebuild decision from
+    // the reduced maximum; on a rebuild step the region ends after the drift
+    // and step() rebuilds outside it (false).
+    ParticleStore& p = particles;
+    const double dt = params.dt;
+    const double half = 0.5 * dt;
+    const auto& x_ref = builder_.x_ref();
+    const PairKernelData kd = pair_kernel_data(true);
+    const GatherData gd = gather_data(true, true);
+    const std::size_t npairs = contacts.size(), n = p.size();
+    double max_d2 = max_disp2_;
+    bool rebuild = false;
+    double t_kicked = 0.0, t_pairs_done = 0.0;
+#pragma omp parallel if(static_cast<long long>(n) >= kParallelMin)
+    {
+        const long long nn = static_cast<long long>(n);
+#pragma omp for schedule(static) reduction(max : max_d2)
+        for (long long ii = 0; ii < nn; ++ii)
+            max_d2 = std::max(max_d2, kick_drift_disc(p, x_ref, static_cast<std::size_t>(ii), dt, half));
+        // (the loop's barrier: max_d2 is final and every position is in place)
+        const bool need = force_rebuild_ || std::sqrt(max_d2) + wall_move > 0.5 * params.skin;
+#pragma omp master
+        {
+            t_kicked = omp_get_wtime();
+            rebuild = need;
+        }
+        if (!need) {
+            const auto [pb, pe] = thread_range(npairs, 64);
+            if (pb < pe) eval_pair_range(kd, pb, pe);
+#pragma omp barrier
+#pragma omp master
+            t_pairs_done = omp_get_wtime();
+            const auto [b, e] = thread_range(n, 8);
+            if (b < e) gather_range(gd, b, e);
+        }
     }
     max_disp2_ = max_d2;
+    kicked_at_ = t_kicked;
+    pairs_done_at_ = t_pairs_done;
+    return !rebuild;
 }
 
 void Simulation::kick() {
@@ -199,6 +254,18 @@ bool Simulation::needs_rebuild(double wall_move) const {
     return force_rebuild_ || std::sqrt(max_disp2_) + wall_move > 0.5 * params.skin;
 }
 
+double Simulation::move_walls() {
+    double wall_move = 0.0;
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+        const Vec2 dx = params.dt * walls[w].velocity;
+        walls[w].a += dx;
+        walls[w].b += dx;
+        wall_shift_[w] += dx;
+        wall_move = std::max(wall_move, norm(wall_shift_[w]));
+    }
+    return wall_move;
+}
+
 void Simulation::step() {
     const double dt = params.dt;
     double t0 = omp_get_wtime();
@@ -207,29 +274,36 @@ void Simulation::step() {
         acc += t1 - t0;
         t0 = t1;
     };
-    kick_drift();
-    lap(times_.integrate);
-    double wall_move = 0.0;
-    for (std::size_t w = 0; w < walls.size(); ++w) {
-        const Vec2 dx = dt * walls[w].velocity;
-        walls[w].a += dx;
-        walls[w].b += dx;
-        wall_shift_[w] += dx;
-        wall_move = std::max(wall_move, norm(wall_shift_[w]));
-    }
-    for (auto& b : boundaries) b->after_drift(*this);
-    lap(times_.boundaries);
-
-    if (needs_rebuild(wall_move)) rebuild_pairs();
-    lap(times_.rebuild);
+    auto lap_to = [&t0](double& acc, double t1) {
+        acc += t1 - t0;
+        t0 = t1;
+    };
     if (boundaries.empty()) {
-        // No hook can change the forces between the gather and the kick:
-        // kick each disc right after summing its force (one pass, not two).
-        pair_forces_gather_kick();
-        times_.pair_forces += pairs_done_at_ - t0;
-        t0 = pairs_done_at_;
-        lap(times_.gather);
+        // No hook runs between the phases: the walls move first (the kick and
+        // drift do not read them), then the rest in one parallel region, and
+        // each disc is kicked right after its force is summed.
+        const double wall_move = move_walls();
+        lap(times_.boundaries);
+        if (step_in_one_region(wall_move)) {
+            lap_to(times_.integrate, kicked_at_);
+            lap_to(times_.pair_forces, pairs_done_at_);
+            lap(times_.gather);
+        } else {
+            lap_to(times_.integrate, kicked_at_);
+            rebuild_pairs();
+            lap(times_.rebuild);
+            pair_forces_gather_kick();
+            lap_to(times_.pair_forces, pairs_done_at_);
+            lap(times_.gather);
+        }
     } else {
+        kick_drift();
+        lap(times_.integrate);
+        const double wall_move = move_walls();
+        for (auto& b : boundaries) b->after_drift(*this);
+        lap(times_.boundaries);
+        if (needs_rebuild(wall_move)) rebuild_pairs();
+        lap(times_.rebuild);
         pair_forces<true>();
         lap(times_.pair_forces);
         gather_forces<true, false>();

@@ -7,12 +7,16 @@
 //     tracking the largest displacement since the last rebuild;
 //   walls move; boundaries' after_drift;
 //   rebuild pairs if needed (PairBuilder);
-//   phase A: each disc pair / disc-wall candidate evaluates the contact law
-//     into its own slot (parallel over pairs, no shared writes);
+//   phase A: each disc pair evaluates the contact law into its own slots
+//     (parallel over pairs, SIMD lanes, no shared writes; pair_kernel.hpp);
 //   phase B: each disc sums gravity, its outgoing then incoming pairs, then
-//     its wall contacts, in that fixed order (parallel over discs);
+//     its wall contacts (evaluated there), in that fixed order (parallel
+//     over discs);
 //   boundaries' add_forces; second half kick; boundaries' after_step.
-// No allocation happens in a step once the stores have reached their size.
+// With no boundaries the walls move first and the rest runs in one parallel
+// region, each disc kicked right after its force is summed (the same
+// operations, so the same results). No allocation happens in a step once the
+// stores have reached their size.
 #pragma once
 
 #include <cstdint>
@@ -118,6 +122,8 @@ private:
     void gather_forces();    // phase B; kKick: also the second half kick
     void kick();             // second half kick
     void pair_forces_gather_kick();  // phases A, B and kick() in one parallel region
+    bool step_in_one_region(double wall_move);  // kick_drift + (no rebuild) A, B, kick; false: rebuild first
+    double move_walls();     // walls move by dt; returns the largest wall shift since the rebuild [m]
     PairKernelData pair_kernel_data(bool update_history);
     GatherData gather_data(bool update_history, bool kick);
     template <bool kUpdateHistory>
@@ -130,6 +136,7 @@ private:
     double max_disp2_ = 0.0;          // largest |x - x_ref|² since the last rebuild [m²]
     bool force_rebuild_ = false;
     PhaseTimes times_;
+    double kicked_at_ = 0.0;          // omp_get_wtime() when the drift ended (phase timers)
     double pairs_done_at_ = 0.0;      // omp_get_wtime() when phase A ended (phase timers)
 };
 

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -134,47 +135,6 @@ private:
     std::chrono::steady_clock::time_point t0_;
 };
 
-/// The settled layer of c: from the cache when present, else settled now
-/// (series rows of the settling go to `series` when given) and cached.
-ParticleStore prepare_layer(const Config& c, LineFile& log, LineFile* series) {
-    const std::string cache = packing_cache_path(c);
-    std::string why;
-    if (auto cached = load_packing(cache, packing_key(c), c.material.density, &why)) {
-        log.line(fmt::format("packing reused from {} ({} discs)", cache, cached->size()));
-        fmt::print("packing reused from {}\n", cache);
-        return std::move(*cached);
-    }
-    log.line(fmt::format("settling a new packing ({})", why));
-    Simulation sim = make_settle_simulation(c);
-    sim.initialize();
-    log.line(fmt::format("generated {} discs ({}); settling", sim.particles.size(), c.packing.kind));
-    Progress progress;
-    const SettleProgress done = settle(sim, c.packing, c.run.output_interval, [&](const SettleProgress& s) {
-        if (series)
-            series->line(fmt::format("{},{:.9g},{:.9g},{:.6g},{},{:.6g}", s.step, s.time, s.kinetic_energy,
-                                     s.ke_ratio, s.contacts, sim.max_overlap_ratio()));
-        progress.show("settling {} discs: t = {:.3f} s, step {}, E_kin/(M g h0) = {:.2e} (target {:.1e})",
-                      sim.particles.size(), s.time, s.step, s.ke_ratio, c.packing.settle_ke_ratio);
-    });
-    progress.done();
-    const double secs = progress.elapsed();
-    log.line(fmt::format("settled after {} steps ({:.4g} s simulated, {:.1f} s wall, {:.3g} disc-steps/s); "
-                         "E_kin/(M g h0) = {:.3g}, max overlap/R = {:.4f}",
-                         done.step, done.time, secs,
-                         static_cast<double>(done.step) * static_cast<double>(sim.particles.size()) / secs,
-                         done.ke_ratio, sim.max_overlap_ratio()));
-    cut_layer(sim.particles, c.packing.h0);
-    save_packing(cache, sim.particles, packing_key(c));
-    log.line(fmt::format("cut to h0 = {:g} m: {} discs; cached in {}", c.packing.h0, sim.particles.size(), cache));
-    return std::move(sim.particles);
-}
-
-std::string series_header() {
-    return "step,time,S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,kinetic_energy,contacts,"
-           "max_overlap_ratio,toe_pro_x_over_h0,toe_retro_x_over_h0,base_traction,discs_on_base,"
-           "discs_sliding_on_base,fixed_discs,mean_overlap_ratio,max_speed,base_normal_force";
-}
-
 /// SIGINT/SIGTERM while a wedge runs: the handler only records the signal;
 /// SA_RESETHAND puts the default action back, so a second signal ends the
 /// process at once (every file is written atomically or line by line, so
@@ -205,6 +165,61 @@ public:
 private:
     struct sigaction old_int_ {}, old_term_ {};
 };
+
+/// The settled layer of c: from the cache when present, else settled now
+/// (series rows of the settling go to `series` when given) and cached.
+ParticleStore prepare_layer(const Config& c, const std::string& dir, LineFile& log, LineFile* series) {
+    const std::string cache = packing_cache_path(c);
+    std::string why;
+    if (auto cached = load_packing(cache, packing_key(c), c.material.density, &why)) {
+        log.line(fmt::format("packing reused from {} ({} discs)", cache, cached->size()));
+        fmt::print("packing reused from {}\n", cache);
+        return std::move(*cached);
+    }
+    log.line(fmt::format("settling a new packing ({})", why));
+    Simulation sim = make_settle_simulation(c);
+    sim.initialize();
+    log.line(fmt::format("generated {} discs ({}); settling", sim.particles.size(), c.packing.kind));
+    Progress progress;
+    // Settling is not checkpointed (it ends in the packing cache, and takes
+    // minutes at most): a signal ends it with exit 128 + signal and a rerun
+    // (for a wedge: --resume) settles again.
+    StopSignals signals;
+    const SettleProgress done = settle(sim, c.packing, c.run.output_interval, [&](const SettleProgress& s) {
+        if (const int sig = signals.pending()) {
+            const std::string msg = fmt::format(
+                "by {} while settling the packing (step {}, {:.0f} s); settling is not checkpointed, so it "
+                "starts again when the run is started again{}",
+                sig == SIGINT ? "SIGINT" : "SIGTERM", s.step, progress.elapsed(),
+                is_wedge(c) ? fmt::format(": orodem run {}/config.toml --out {} --resume", dir, dir)
+                            : std::string(" (with a new --out)"));
+            log.line("interrupted " + msg);
+            throw InterruptedError(msg, sig);
+        }
+        if (series)
+            series->line(fmt::format("{},{:.9g},{:.9g},{:.6g},{},{:.6g}", s.step, s.time, s.kinetic_energy,
+                                     s.ke_ratio, s.contacts, sim.max_overlap_ratio()));
+        progress.show("settling {} discs: t = {:.3f} s, step {}, E_kin/(M g h0) = {:.2e} (target {:.1e})",
+                      sim.particles.size(), s.time, s.step, s.ke_ratio, c.packing.settle_ke_ratio);
+    });
+    progress.done();
+    const double secs = progress.elapsed();
+    log.line(fmt::format("settled after {} steps ({:.4g} s simulated, {:.1f} s wall, {:.3g} disc-steps/s); "
+                         "E_kin/(M g h0) = {:.3g}, max overlap/R = {:.4f}",
+                         done.step, done.time, secs,
+                         static_cast<double>(done.step) * static_cast<double>(sim.particles.size()) / secs,
+                         done.ke_ratio, sim.max_overlap_ratio()));
+    cut_layer(sim.particles, c.packing.h0);
+    save_packing(cache, sim.particles, packing_key(c));
+    log.line(fmt::format("cut to h0 = {:g} m: {} discs; cached in {}", c.packing.h0, sim.particles.size(), cache));
+    return std::move(sim.particles);
+}
+
+std::string series_header() {
+    return "step,time,S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,kinetic_energy,contacts,"
+           "max_overlap_ratio,toe_pro_x_over_h0,toe_retro_x_over_h0,base_traction,discs_on_base,"
+           "discs_sliding_on_base,fixed_discs,mean_overlap_ratio,max_speed,base_normal_force";
+}
 
 std::uint64_t file_bytes(const std::string& path) {
     std::error_code ec;
@@ -255,6 +270,7 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
     const std::uint64_t cfg_hash = config_hash(c);
     const std::string ckpt_dir = dir + "/checkpoint";
     RunLoopState st;
+    bool initial_overlap_allowed = false;  // run.allow_initial_overlap used: no overlap limit at step 0
     if (resumed) {
         st = *resumed;
         w.profile.y_mean = st.surface_y_mean;
@@ -265,6 +281,27 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
                              "y_mean = {:.4g} m, v = {:g} m/s",
                              c.run.experiment, sim.particles.size(), w.pro_length / h0, w.retro_length / h0,
                              w.profile.y_mean, c.wedge.v));
+        // RELIABILITY-CHECKLIST 4: the initial layer's overlaps, reported, and
+        // refused above the stop level unless run.allow_initial_overlap.
+        const OverlapSummary o = overlap_summary(sim, c.run.warn_overlap_ratio);
+        const std::string where =
+            o.touching == 0 ? std::string("no discs touch")
+                            : fmt::format("worst overlap/R = {:.4f} between discs {} at ({:.6g}, {:.6g}) m and {} at "
+                                          "({:.6g}, {:.6g}) m",
+                                          o.worst, o.id_i, o.x_i.x, o.x_i.y, o.id_j, o.x_j.x, o.x_j.y);
+        log.line(fmt::format("initial overlaps: {} touching pairs, {} above run.warn_overlap_ratio = {:g}; {}",
+                             o.touching, o.above, c.run.warn_overlap_ratio, where));
+        if (o.worst > c.run.max_overlap_ratio) {
+            if (!c.run.allow_initial_overlap)
+                throw ConfigError(fmt::format(
+                    "the initial layer is not settled: {} (above run.max_overlap_ratio = {:g}; {} pairs above "
+                    "run.warn_overlap_ratio = {:g}); delete the packing cache {} to settle it again, or set "
+                    "run.allow_initial_overlap = true to start anyway",
+                    where, c.run.max_overlap_ratio, o.above, c.run.warn_overlap_ratio, packing_cache_path(c)));
+            initial_overlap_allowed = true;
+            log.line("warning: starting anyway (run.allow_initial_overlap = true); the overlap limit applies from "
+                     "the first health check after step 0");
+        }
     }
     const std::string series_path = dir + "/series.csv";
     LineFile series(series_path);
@@ -284,7 +321,8 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
     // free-fall speed from that height plus ten times the belt speed.
     HealthLimits lim;
     lim.max_overlap_ratio = c.run.max_overlap_ratio;
-    const double ceiling = w.pro_length + w.retro_length + 2.0 * h0;
+    const double ceiling = c.run.domain_height > 0.0 ? c.run.domain_height * h0
+                                                     : w.pro_length + w.retro_length + 2.0 * h0;
     lim.y_min = -h0;
     lim.y_max = ceiling;
     lim.x_max = (w.retro_length > 0.0 ? w.retro_length : 0.0) + 2.0 * h0;
@@ -307,10 +345,18 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
     };
     // Stops the run: snapshot of the bad state for inspection, checkpoint of
     // the last good one, InstabilityError (exit 3).
+    // run.on_domain_exit = "stop": set by check(), carried out by the loop.
+    std::optional<HealthProblem> stop_for;
     auto check = [&]() {
         update_limits();
-        const auto problem = check_health(sim, lim);
+        HealthLimits now = lim;
+        if (initial_overlap_allowed && sim.step_count == first_step) now.max_overlap_ratio = 1e300;
+        const auto problem = check_health(sim, now);
         if (!problem) return;
+        if (problem->what == "left the domain" && c.run.on_domain_exit == "stop") {
+            stop_for = problem;
+            return;
+        }
         const double S = c.wedge.v * sim.time / h0;
         std::string saved = "no earlier good state was kept";
         if (!last_good.empty()) {
@@ -388,23 +434,43 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
     };
     // One output: checks, row, snapshot and pictures, then the state kept as
     // the last good one and (every checkpoint_every_outputs) a checkpoint.
-    bool space_checked = false;
+    // The free space is checked at every output against what the rest of the
+    // run writes (after the checkpoint, so a stop for space can be resumed).
+    bool overlap_warned = false;  // stderr once; log.txt at every output
     auto output = [&]() {
         check();
         write_row();
         draw();
         ++st.outputs;
+        if (const double worst = sim.max_overlap_ratio(); worst > c.run.warn_overlap_ratio) {
+            const std::string msg = fmt::format(
+                "largest overlap/R = {:.4f} at step {} (S = {:.3f}) is above run.warn_overlap_ratio = {:g} (the run "
+                "stops at run.max_overlap_ratio = {:g}); consider a smaller wedge.v or numerics.safety, or a larger "
+                "material.k_n",
+                worst, sim.step_count, c.wedge.v * sim.time / h0, c.run.warn_overlap_ratio, c.run.max_overlap_ratio);
+            log.line("warning: " + msg);
+            if (!overlap_warned) fmt::print(stderr, "\norodem: warning: {} (further warnings in log.txt only)\n", msg);
+            overlap_warned = true;
+        }
+        const bool stopping = stop_for.has_value();
         last_good = state_bytes();
         last_good_step = sim.step_count;
         last_good_snapshot = st.pvd.back().second;
         if (st.outputs % static_cast<std::uint64_t>(c.run.checkpoint_every_outputs) == 0 ||
-            sim.step_count >= total_steps)
+            sim.step_count >= total_steps || stopping)
             save_checkpoint(last_good);
-        if (!space_checked) {
-            space_checked = true;
-            check_free_space(dir, st.pvd.back().second, n_outputs + 1 - std::min(n_outputs + 1, st.outputs),
-                             last_good.size());
+        if (stopping) {
+            const HealthProblem& pr = *stop_for;
+            const std::string msg = fmt::format(
+                "step {} (S = {:.4f}): disc {} at ({:.6g}, {:.6g}) m left the domain ({}); run stopped as "
+                "run.on_domain_exit = \"stop\" asks: the outputs and the checkpoint of this step are written. "
+                "Likely cause: {}",
+                sim.step_count, c.wedge.v * sim.time / h0, pr.id, pr.x.x, pr.x.y, pr.detail, pr.advice);
+            log.line("STOPPED: " + msg);
+            throw InstabilityError(msg);
         }
+        check_free_space(dir, st.pvd.back().second, n_outputs + 1 - std::min(n_outputs + 1, st.outputs),
+                         last_good.size());
     };
 
     StopSignals signals;
@@ -414,7 +480,6 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
             last_good = encode_checkpoint(sim, st, cfg_hash);
             last_good_step = sim.step_count;
             last_good_snapshot = st.pvd.back().second;
-            space_checked = true;
             check_free_space(dir, st.pvd.back().second, n_outputs + 1 - std::min(n_outputs + 1, st.outputs),
                              last_good.size());
         }
@@ -435,6 +500,7 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
             output();
         } else if (sim.step_count % kCheckEvery == 0) {
             check();
+            if (stop_for) output();  // writes this step's outputs and checkpoint, then stops (exit 3)
         }
         if (const int sig = signals.pending()) {
             if (sim.step_count != next_output) check();
@@ -454,6 +520,7 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
             std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint_time).count() >=
                 checkpoint_secs) {
             if (sim.step_count % kCheckEvery != 0) check();
+            if (stop_for) output();
             save_checkpoint(state_bytes());
         }
     }
@@ -462,6 +529,16 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
                          sim.step_count, progress.elapsed()));
     log.line("step phases (this process): " + phase_breakdown(sim.phase_times()));
     cmd_plot({dir}, dir + "/figures/plots.png");
+    return 0;
+}
+
+/// A wedge run from the beginning in dir (config.toml and log.txt exist).
+int start_wedge(const Config& c, const std::string& dir, LineFile& log) {
+    const ParticleStore layer = prepare_layer(c, dir, log, nullptr);
+    WedgeSetup w = make_wedge(c, layer);
+    const int rc = run_wedge(c, w, dir, log, nullptr);
+    if (rc != 0) return rc;
+    fmt::print("outputs in {}/ (config.toml, log.txt, series.csv)\n", dir);
     return 0;
 }
 
@@ -510,6 +587,17 @@ int resume_run(const Config& c, const std::string& dir) {
         throw ConfigError(fmt::format("--resume --out {}: {} differs from the run's config ({}); resume with "
                                       "orodem run {}/config.toml --out {} --resume",
                                       dir, c.path, first_config_difference(saved, c), dir, dir));
+    if (orodem::list_checkpoints(dir + "/checkpoint").empty()) {
+        // Interrupted before its first checkpoint (while settling): nothing
+        // to continue, so the run starts from the beginning in the same place.
+        for (const char* partial : {"series.csv", "run.pvd", "snapshots", "figures", "checkpoint"})
+            fs::remove_all(fs::path(dir) / partial);
+        LineFile log(dir + "/log.txt");
+        log.line(fmt::format("resumed by orodem {}: no checkpoint yet, so the run starts from the beginning",
+                             ORODEM_VERSION));
+        fmt::print("{} has no checkpoint yet: starting the run from the beginning\n", dir);
+        return start_wedge(c, dir, log);
+    }
     WedgeSetup w = make_wedge(c, ParticleStore{});
     RunLoopState st;
     std::vector<std::string> notes;
@@ -547,7 +635,7 @@ int cmd_run(const CommonArgs& a, const std::string& out_arg, bool resume) {
         LineFile series(dir + "/series.csv");
         // Header always; rows only when the layer is settled now (not cached).
         series.line("step,time,kinetic_energy,ke_ratio,contacts,max_overlap_ratio");
-        const ParticleStore layer = prepare_layer(c, log, &series);
+        const ParticleStore layer = prepare_layer(c, dir, log, &series);
         save_packing(dir + "/packing.bin", layer, packing_key(c));
         const double surface = mean_surface_height(layer, 0.0, c.packing.length, 2.0 * c.packing.r_max);
         log.line(fmt::format("layer: {} discs, mean surface height {:.4g} m (h0 = {:g} m)", layer.size(), surface,
@@ -556,12 +644,7 @@ int cmd_run(const CommonArgs& a, const std::string& out_arg, bool resume) {
         fmt::print("outputs in {}/ (config.toml, log.txt, series.csv, packing.bin)\n", dir);
         return 0;
     }
-    const ParticleStore layer = prepare_layer(c, log, nullptr);
-    WedgeSetup w = make_wedge(c, layer);
-    const int rc = run_wedge(c, w, dir, log, nullptr);
-    if (rc != 0) return rc;
-    fmt::print("outputs in {}/ (config.toml, log.txt, series.csv)\n", dir);
-    return 0;
+    return start_wedge(c, dir, log);
 }
 
 namespace {

@@ -102,6 +102,9 @@ int main(int argc, char** argv) {
     } catch (const IoError& e) {
         fmt::print(stderr, "orodem: I/O error: {}\n", e.what());
         return static_cast<int>(ExitCode::io);
+    } catch (const InterruptedError& e) {
+        fmt::print(stderr, "\norodem: interrupted: {}\n", e.what());
+        return 128 + e.signal;
     } catch (const InstabilityError& e) {
         fmt::print(stderr, "orodem: unstable: {}\n", e.what());
         return static_cast<int>(ExitCode::unstable);

@@ -2,6 +2,8 @@
 // run directories and the packing cache (SPEC §4, §5). Every test runs the
 // real binary in a fresh temporary directory.
 #include <gtest/gtest.h>
+
+#include "cli/cli_util.hpp"
 #include <stdlib.h>
 #include <sys/wait.h>
 
@@ -15,6 +17,7 @@
 #include "orodem/setup/scenario.hpp"
 
 namespace fs = std::filesystem;
+using namespace cli;
 
 namespace {
 
@@ -22,31 +25,6 @@ struct Result {
     int status = -1;  // exit status, or -1 when the process did not exit normally
     std::string out, err;
 };
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-void write(const fs::path& p, const std::string& text) {
-    std::ofstream out(p, std::ios::binary);
-    out << text;
-    ASSERT_TRUE(out.good()) << p;
-}
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-    return q + "'";
-}
-
-int count_lines(const std::string& s) {
-    int n = 0;
-    for (char ch : s) n += ch == '\n';
-    return n;
-}
 
 /// Every path below dir with its size, for "nothing was written" checks.
 std::map<std::string, std::uintmax_t> listing(const fs::path& dir) {

@@ -3,6 +3,8 @@
 // and carries the point data of SPEC §4. Skipped with a message when
 // /usr/bin/python3 has no vtk module.
 #include <gtest/gtest.h>
+
+#include "cli/cli_util.hpp"
 #include <stdlib.h>
 #include <sys/wait.h>
 
@@ -12,18 +14,9 @@
 #include <string>
 
 namespace fs = std::filesystem;
+using namespace cli;
 
 namespace {
-int run(const std::string& cmd, std::string* out = nullptr) {
-    FILE* f = popen((cmd + " 2>&1").c_str(), "r");
-    if (!f) return -1;
-    char buf[4096];
-    std::string text;
-    while (std::fgets(buf, sizeof buf, f)) text += buf;
-    const int st = pclose(f);
-    if (out) *out = text;
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
 }  // namespace
 
 TEST(ParaView, RunPvdSnapshotsOpenInVtk) {

@@ -2,6 +2,8 @@
 // config.toml, series.csv (with NaN rows: no wedge yet), two VTU snapshots
 // and run.pvd. Also the legend labels and the series reader directly.
 #include <gtest/gtest.h>
+
+#include "cli/cli_util.hpp"
 #include <stdlib.h>
 #include <sys/wait.h>
 
@@ -22,33 +24,9 @@
 #include "orodem/state/particles.hpp"
 
 namespace fs = std::filesystem;
+using namespace cli;
 
 namespace {
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-void write(const fs::path& p, const std::string& text) {
-    std::ofstream out(p, std::ios::binary);
-    out << text;
-    ASSERT_TRUE(out.good()) << p;
-}
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-    return q + "'";
-}
-
-int count_lines(const std::string& s) {
-    int n = 0;
-    for (char ch : s) n += ch == '\n';
-    return n;
-}
 
 std::string config_text(double mu_bp, int threads = 1) {
     std::ostringstream s;

@@ -5,6 +5,8 @@
 // checkpoint falls back to the older one; another config is refused (exit 2);
 // a full disk gives exit 4 and never a corrupt checkpoint.
 #include <gtest/gtest.h>
+
+#include "cli/cli_util.hpp"
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -26,51 +28,10 @@
 #include "orodem/io/config.hpp"
 #include "orodem/io/files.hpp"
 
-extern char** environ;
 namespace fs = std::filesystem;
+using namespace cli;
 
 namespace {
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-struct Proc {
-    pid_t pid = -1;
-    fs::path out, err;
-};
-
-/// Starts orodem with args, stdout/stderr into files beside `log_stem`.
-Proc start(const std::vector<std::string>& args, const fs::path& log_stem) {
-    Proc p;
-    p.out = log_stem.string() + ".out";
-    p.err = log_stem.string() + ".err";
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, p.out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&fa, 2, p.err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    std::vector<std::string> all = {ORODEM_EXE};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    const int rc = posix_spawn(&p.pid, ORODEM_EXE, &fa, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&fa);
-    if (rc != 0) p.pid = -1;
-    return p;
-}
-
-/// Exit status, or 128 + signal when killed by one.
-int wait_for(const Proc& p) {
-    int st = 0;
-    if (p.pid < 0 || waitpid(p.pid, &st, 0) != p.pid) return -1;
-    if (WIFEXITED(st)) return WEXITSTATUS(st);
-    if (WIFSIGNALED(st)) return 128 + WTERMSIG(st);
-    return -1;
-}
 
 /// True once dir/checkpoint holds a checkpoint of a step after 0.
 bool has_later_checkpoint(const fs::path& run) {
@@ -90,29 +51,6 @@ bool signal_after_checkpoint(const Proc& p, const fs::path& run, std::initialize
     }
     for (int s : sigs) kill(p.pid, s);
     return true;
-}
-
-std::vector<std::string> names_in(const fs::path& dir) {
-    std::vector<std::string> v;
-    for (const auto& e : fs::directory_iterator(dir)) v.push_back(e.path().filename().string());
-    std::sort(v.begin(), v.end());
-    return v;
-}
-
-/// series.csv, run.pvd, every snapshot and every snapshot picture byte for byte.
-void expect_same_outputs(const fs::path& a, const fs::path& b) {
-    EXPECT_EQ(slurp(b / "series.csv"), slurp(a / "series.csv")) << b;
-    EXPECT_EQ(slurp(b / "run.pvd"), slurp(a / "run.pvd")) << b;
-    ASSERT_EQ(names_in(b / "snapshots"), names_in(a / "snapshots")) << b;
-    for (const auto& n : names_in(a / "snapshots"))
-        EXPECT_TRUE(slurp(b / "snapshots" / n) == slurp(a / "snapshots" / n)) << b / "snapshots" / n;
-    int pictures = 0;
-    for (const auto& n : names_in(a / "figures")) {
-        if (n.rfind("horizons_", 0) != 0 && n.rfind("displacement_", 0) != 0) continue;
-        ++pictures;
-        EXPECT_TRUE(slurp(b / "figures" / n) == slurp(a / "figures" / n)) << b / "figures" / n;
-    }
-    EXPECT_GT(pictures, 5);
 }
 
 class Resume : public ::testing::Test {
@@ -240,7 +178,7 @@ TEST_F(Resume, AnOverlapBeyondTheLimitStopsWithExit3AndKeepsTheLastGoodState) {
     // The layer starts at max overlap/R = 0.015 and passes 0.02 later on.
     const fs::path run = root_ / "H";
     const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1", "--set",
-                          "run.max_overlap_ratio=0.016"},
+                          "run.max_overlap_ratio=0.016", "--set", "run.warn_overlap_ratio=0.016"},
                          root_ / "H");
     EXPECT_EQ(wait_for(p), 3);
     const std::string err = slurp(p.err);
@@ -251,7 +189,8 @@ TEST_F(Resume, AnOverlapBeyondTheLimitStopsWithExit3AndKeepsTheLastGoodState) {
     EXPECT_NE(err.find("last good state: step "), std::string::npos) << err;
     EXPECT_NE(slurp(run / "log.txt").find("UNSTABLE: "), std::string::npos);
     const std::uint64_t hash =
-        orodem::config_hash(orodem::load_config(config_.string(), {{"run.max_overlap_ratio", "0.016"}}));
+        orodem::config_hash(orodem::load_config(config_.string(), {{"run.max_overlap_ratio", "0.016"},
+                                                                   {"run.warn_overlap_ratio", "0.016"}}));
     const auto files = orodem::list_checkpoints((run / "checkpoint").string());
     ASSERT_FALSE(files.empty());
     for (const auto& [step, path] : files)
@@ -259,4 +198,107 @@ TEST_F(Resume, AnOverlapBeyondTheLimitStopsWithExit3AndKeepsTheLastGoodState) {
     bool bad_state_snapshot = false;
     for (const auto& n : names_in(run / "snapshots")) bad_state_snapshot |= n.rfind("unstable-step", 0) == 0;
     EXPECT_TRUE(bad_state_snapshot);
+}
+
+TEST_F(Resume, InitialOverlapsAreReportedAndRefusedAboveTheLimitUnlessAllowed) {
+    // The settled tiny layer starts at max overlap/R = 0.015 (see above).
+    const fs::path run = root_ / "I";
+    const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1", "--set",
+                          "run.max_overlap_ratio=0.002", "--set", "run.warn_overlap_ratio=0.001"},
+                         root_ / "I");
+    EXPECT_EQ(wait_for(p), 2);
+    const std::string err = slurp(p.err);
+    EXPECT_EQ(count_lines(err), 1) << err;
+    EXPECT_NE(err.find("the initial layer is not settled: worst overlap/R = 0.01"), std::string::npos) << err;
+    EXPECT_NE(err.find("run.allow_initial_overlap = true"), std::string::npos) << err;
+    EXPECT_NE(slurp(run / "log.txt").find("initial overlaps: "), std::string::npos);
+    EXPECT_FALSE(fs::exists(run / "series.csv"));
+
+    // Allowed: step 0 is written, then the first health check (step 1000) stops the run.
+    const fs::path allowed = root_ / "I2";
+    const Proc q = start({"run", config_.string(), "--out", allowed.string(), "--threads", "1", "--set",
+                          "run.max_overlap_ratio=0.002", "--set", "run.warn_overlap_ratio=0.001", "--set",
+                          "run.allow_initial_overlap=true"},
+                         root_ / "I2");
+    EXPECT_EQ(wait_for(q), 3) << slurp(q.err);
+    EXPECT_NE(slurp(q.err).find("step 1000 "), std::string::npos) << slurp(q.err);
+    EXPECT_NE(slurp(allowed / "log.txt").find("warning: starting anyway"), std::string::npos);
+    EXPECT_EQ(count_lines(slurp(allowed / "series.csv")), 2);  // header and step 0
+}
+
+TEST_F(Resume, AnOverlapAboveTheWarningLevelIsReportedOnceOnStderrAndAtEveryOutputInTheLog) {
+    const fs::path run = root_ / "J";
+    const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1", "--set",
+                          "run.warn_overlap_ratio=0.001"},
+                         root_ / "J");
+    ASSERT_EQ(wait_for(p), 0) << slurp(p.err);
+    const std::string err = slurp(p.err);
+    EXPECT_NE(err.find("orodem: warning: largest overlap/R = 0.01"), std::string::npos) << err;
+    EXPECT_NE(err.find("above run.warn_overlap_ratio = 0.001"), std::string::npos) << err;
+    EXPECT_EQ(err.find("orodem: warning:"), err.rfind("orodem: warning:")) << "more than one warning: " << err;
+    EXPECT_NE(err.find("(further warnings in log.txt only)"), std::string::npos) << err;
+    const std::string log = slurp(run / "log.txt");
+    int warnings = 0;
+    for (std::size_t at = log.find("warning: largest overlap/R"); at != std::string::npos;
+         at = log.find("warning: largest overlap/R", at + 1))
+        ++warnings;
+    EXPECT_EQ(warnings, count_lines(slurp(run / "series.csv")) - 1);  // one per output row
+    // The warning changes nothing: the outputs are those of the reference run.
+    EXPECT_EQ(slurp(run / "series.csv"), slurp(reference_ / "series.csv"));
+}
+
+TEST_F(Resume, ADiscLeavingTheDomainStopsWithTheChosenPolicy) {
+    // A ceiling at 0.5 h0 puts the top of the layer outside the domain at step 0.
+    const fs::path run = root_ / "K";
+    const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1", "--set",
+                          "run.domain_height=0.5"},
+                         root_ / "K");
+    EXPECT_EQ(wait_for(p), 3);
+    std::string err = slurp(p.err);
+    EXPECT_NE(err.find("left the domain (domain x in ["), std::string::npos) << err;
+    EXPECT_NE(err.find("no earlier good state was kept"), std::string::npos) << err;
+    EXPECT_EQ(count_lines(slurp(run / "series.csv")), 1);  // the header only: the bad state is not a row
+
+    const fs::path stop = root_ / "K2";
+    const Proc q = start({"run", config_.string(), "--out", stop.string(), "--threads", "1", "--set",
+                          "run.domain_height=0.5", "--set", "run.on_domain_exit=\"stop\""},
+                         root_ / "K2");
+    EXPECT_EQ(wait_for(q), 3);
+    err = slurp(q.err);
+    EXPECT_NE(err.find("left the domain"), std::string::npos) << err;
+    EXPECT_NE(err.find("run.on_domain_exit = \"stop\""), std::string::npos) << err;
+    EXPECT_EQ(count_lines(slurp(stop / "series.csv")), 2);  // header and the row of the stopping step
+    EXPECT_TRUE(fs::exists(stop / "snapshots" / "S00.000.vtu"));
+    const std::uint64_t hash = orodem::config_hash(orodem::load_config(
+        config_.string(), {{"run.domain_height", "0.5"}, {"run.on_domain_exit", "\"stop\""}}));
+    const auto files = orodem::list_checkpoints((stop / "checkpoint").string());
+    ASSERT_EQ(files.size(), 1u);
+    EXPECT_NO_THROW(orodem::verify_checkpoint(orodem::read_file(files[0].second), hash));
+    EXPECT_NE(slurp(stop / "log.txt").find("STOPPED: "), std::string::npos);
+}
+
+TEST_F(Resume, ASignalWhileSettlingExitsCleanlyAndResumeStartsAgain) {
+    // A packing seed of its own, so this run settles (the cache has only seed 1's layer).
+    const fs::path run = root_ / "L";
+    const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1", "--set", "packing.seed=7"},
+                         root_ / "L");
+    const auto t0 = std::chrono::steady_clock::now();
+    while (slurp(run / "log.txt").find("settling") == std::string::npos &&
+           std::chrono::steady_clock::now() - t0 < std::chrono::seconds(30))
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    kill(p.pid, SIGINT);
+    const int rc = wait_for(p);
+    if (rc == 0) GTEST_SKIP() << "the settling ended before the signal arrived";
+    EXPECT_EQ(rc, 130) << slurp(p.err);
+    const std::string err = slurp(p.err);
+    EXPECT_NE(err.find("orodem: interrupted: by SIGINT while settling the packing"), std::string::npos) << err;
+    const std::string cmd = std::string("orodem run ") + run.string() + "/config.toml --out " + run.string() + " --resume";
+    EXPECT_NE(err.find(cmd), std::string::npos) << err;
+    EXPECT_TRUE(orodem::list_checkpoints((run / "checkpoint").string()).empty());
+
+    const Proc r = start({"run", run.string() + "/config.toml", "--out", run.string(), "--resume", "--threads", "1"},
+                         root_ / "L-resume");
+    ASSERT_EQ(wait_for(r), 0) << slurp(r.err);
+    EXPECT_NE(slurp(r.out).find("has no checkpoint yet: starting the run from the beginning"), std::string::npos);
+    EXPECT_EQ(count_lines(slurp(run / "series.csv")), count_lines(slurp(reference_ / "series.csv")));
 }

@@ -1,6 +1,8 @@
 // `orodem sweep`: one run per value into DIR/<key>=<value>/, the settled
 // layer settled once and reused, and the overlay plot at the end.
 #include <gtest/gtest.h>
+
+#include "cli/cli_util.hpp"
 #include <stdlib.h>
 #include <sys/wait.h>
 
@@ -11,24 +13,9 @@
 #include <string>
 
 namespace fs = std::filesystem;
+using namespace cli;
 
 namespace {
-int run(const std::string& cmd, std::string* out = nullptr) {
-    FILE* f = popen((cmd + " 2>&1").c_str(), "r");
-    if (!f) return -1;
-    char buf[4096];
-    std::string text;
-    while (std::fgets(buf, sizeof buf, f)) text += buf;
-    const int st = pclose(f);
-    if (out) *out = text;
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 }  // namespace
 
 TEST(Sweep, OneRunPerValueReusingTheLayerThenPlots) {

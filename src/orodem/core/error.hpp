@@ -34,6 +34,14 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+/// A SIGINT/SIGTERM ended the command at a point with nothing to checkpoint
+/// (e.g. while settling a packing); exit status 128 + signal.
+class InterruptedError : public std::runtime_error {
+public:
+    InterruptedError(const std::string& what, int sig) : std::runtime_error(what), signal(sig) {}
+    int signal;
+};
+
 /// Throws IoError("<what> '<path>': <strerror(errno)>").
 [[noreturn]] void throw_io_error(const std::string& what, const std::string& path);
 

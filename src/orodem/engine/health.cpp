@@ -8,6 +8,41 @@
 
 namespace orodem {
 
+namespace {
+
+/// δ / min(R_i, R_j) of candidate pair k (negative when apart).
+double overlap_ratio(const Simulation& sim, std::size_t k) {
+    const ParticleStore& p = sim.particles;
+    const ContactStore& cs = sim.contacts;
+    const std::uint32_t i = cs.i[k], j = cs.j[k];
+    const Vec2 d = p.x[i] - (p.x[j] + Vec2{cs.shift[k] * sim.params.period_x, 0.0});
+    const double ri = p.radius[i], rj = p.radius[j];
+    return (ri + rj - norm(d)) / std::min(ri, rj);
+}
+
+}  // namespace
+
+OverlapSummary overlap_summary(const Simulation& sim, double threshold) {
+    const ParticleStore& p = sim.particles;
+    const ContactStore& cs = sim.contacts;
+    OverlapSummary s;
+    for (std::size_t k = 0; k < cs.size(); ++k) {
+        if (cs.bonded[k]) continue;
+        const double ratio = overlap_ratio(sim, k);
+        if (ratio <= 0.0) continue;
+        ++s.touching;
+        if (ratio > threshold) ++s.above;
+        if (ratio > s.worst) {
+            s.worst = ratio;
+            s.id_i = p.id[cs.i[k]];
+            s.id_j = p.id[cs.j[k]];
+            s.x_i = p.x[cs.i[k]];
+            s.x_j = p.x[cs.j[k]];
+        }
+    }
+    return s;
+}
+
 std::optional<HealthProblem> check_health(const Simulation& sim, const HealthLimits& lim) {
     const ParticleStore& p = sim.particles;
     const std::size_t n = p.size();
@@ -29,9 +64,7 @@ std::optional<HealthProblem> check_health(const Simulation& sim, const HealthLim
     for (std::size_t k = 0; k < cs.size(); ++k) {
         if (cs.bonded[k]) continue;
         const std::uint32_t i = cs.i[k], j = cs.j[k];
-        const Vec2 d = p.x[i] - (p.x[j] + Vec2{cs.shift[k] * sim.params.period_x, 0.0});
-        const double ri = p.radius[i], rj = p.radius[j];
-        const double ratio = (ri + rj - norm(d)) / std::min(ri, rj);
+        const double ratio = overlap_ratio(sim, k);
         if (ratio > lim.max_overlap_ratio)
             return HealthProblem{"overlap", p.id[i], p.x[i],
                                  fmt::format("overlap {:.3f} of the smaller radius with disc {} at ({:g}, {:g}); "

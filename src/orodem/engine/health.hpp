@@ -33,4 +33,15 @@ struct HealthProblem {
 /// The first problem found (in id order within each check), or none.
 std::optional<HealthProblem> check_health(const Simulation& sim, const HealthLimits& lim);
 
+/// Overlaps of the unbonded candidate pairs (RELIABILITY-CHECKLIST 2, 4): how
+/// many touch, how many exceed `threshold` (δ / min(R_i, R_j)), and the worst.
+struct OverlapSummary {
+    std::size_t touching = 0;     // pairs with δ > 0
+    std::size_t above = 0;        // pairs with δ / min(R_i, R_j) > threshold
+    double worst = 0.0;           // largest δ / min(R_i, R_j) [-]
+    std::uint32_t id_i = 0, id_j = 0;  // the worst pair (ids)
+    Vec2 x_i, x_j;                // their positions [m]
+};
+OverlapSummary overlap_summary(const Simulation& sim, double threshold);
+
 }  // namespace orodem

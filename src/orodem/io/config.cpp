@@ -331,6 +331,14 @@ Config read(const toml::table& root, const std::string& file) {
                 r.integer("checkpoint_every_outputs", c.run.checkpoint_every_outputs, 1, 1000000));
             c.run.checkpoint_minutes = r.number("checkpoint_minutes", c.run.checkpoint_minutes, non_negative());
             c.run.max_overlap_ratio = r.number("max_overlap_ratio", c.run.max_overlap_ratio, {0.0, 1.0, true, false});
+            c.run.warn_overlap_ratio = r.number("warn_overlap_ratio", c.run.warn_overlap_ratio, {0.0, 1.0, true, false});
+            if (c.run.warn_overlap_ratio > c.run.max_overlap_ratio)
+                r.refuse("warn_overlap_ratio",
+                         fmt::format("must not exceed run.max_overlap_ratio = {:g} (the warning comes before the stop)",
+                                     c.run.max_overlap_ratio));
+            c.run.allow_initial_overlap = r.boolean("allow_initial_overlap", c.run.allow_initial_overlap);
+            c.run.domain_height = r.number("domain_height", c.run.domain_height, non_negative());
+            c.run.on_domain_exit = r.choice("on_domain_exit", c.run.on_domain_exit, {"error", "stop"});
         }
         r.finish();
     }

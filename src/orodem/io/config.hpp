@@ -23,6 +23,12 @@ struct RunConfig {
     int checkpoint_every_outputs = 1;   // wedge: a checkpoint every this many outputs [-]
     double checkpoint_minutes = 10.0;   // wedge: and after this much wall time, checked every 100 steps; 0 = off [min]
     double max_overlap_ratio = 0.5;     // wedge: stop (exit 3) when an overlap exceeds this fraction of the smaller radius [-]
+    double warn_overlap_ratio = 0.05;   // wedge: log a warning when the largest overlap exceeds this fraction [-]
+    bool allow_initial_overlap = false; // wedge: start even when the initial layer has an overlap above max_overlap_ratio
+    double domain_height = 0.0;         // wedge: discs above this height leave the domain [h0]; 0 = all the
+                                        // material stacked in one column h0 wide (docs/reliability.md)
+    std::string on_domain_exit = "error";  // wedge: a disc leaving the domain: error (exit 3, last good state kept)
+                                           // | stop (outputs and checkpoint of the current state, exit 3)
 };
 
 /// The wedge experiments (SPEC §2). Lengths in units of h0 where noted.

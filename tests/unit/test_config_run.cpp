@@ -1,0 +1,80 @@
+// The [run] keys of the wedge experiments (checkpoints, health limits,
+// domain-exit policy): each out-of-range or ill-typed value is refused with
+// a one-line ConfigError naming the key and what is allowed, and the
+// defaults resolve to the documented values.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "orodem/core/error.hpp"
+#include "orodem/io/config.hpp"
+
+using namespace orodem;
+
+namespace {
+
+const std::string kWedge = "[run]\nexperiment = \"exp1\"\n";
+
+std::string refusal_of(const std::string& run_lines) {
+    try {
+        parse_config(kWedge + run_lines, "run.toml", {});
+    } catch (const ConfigError& e) {
+        const std::string msg = e.what();
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+        return msg;
+    }
+    ADD_FAILURE() << "accepted: " << run_lines;
+    return {};
+}
+
+}  // namespace
+
+TEST(ConfigRun, DefaultsResolve) {
+    const Config c = parse_config(kWedge, "run.toml", {});
+    EXPECT_EQ(c.run.checkpoint_every_outputs, 1);
+    EXPECT_DOUBLE_EQ(c.run.checkpoint_minutes, 10.0);
+    EXPECT_DOUBLE_EQ(c.run.max_overlap_ratio, 0.5);
+    EXPECT_DOUBLE_EQ(c.run.warn_overlap_ratio, 0.05);
+    EXPECT_FALSE(c.run.allow_initial_overlap);
+    EXPECT_EQ(c.run.on_domain_exit, "error");
+    EXPECT_DOUBLE_EQ(c.run.domain_height, 0.0);
+    const Config d = parse_config(kWedge + "on_domain_exit = \"stop\"\nallow_initial_overlap = true\n", "run.toml", {});
+    EXPECT_EQ(d.run.on_domain_exit, "stop");
+    EXPECT_TRUE(d.run.allow_initial_overlap);
+}
+
+TEST(ConfigRun, EveryBadValueIsRefusedNamingKeyAndAllowedRange) {
+    struct Case {
+        const char* line;  // the offending line in [run]
+        const char* key;   // the key the message must name
+        const char* why;   // what the message must say is allowed
+    };
+    const Case cases[] = {
+        {"checkpoint_every_outputs = 0", "run.checkpoint_every_outputs", "[1, 1000000]"},
+        {"checkpoint_every_outputs = 1.5", "run.checkpoint_every_outputs", "integer"},
+        {"checkpoint_minutes = -1", "run.checkpoint_minutes", ">= 0"},
+        {"max_overlap_ratio = 0", "run.max_overlap_ratio", "(0, 1]"},
+        {"max_overlap_ratio = 1.5", "run.max_overlap_ratio", "(0, 1]"},
+        {"warn_overlap_ratio = 0", "run.warn_overlap_ratio", "(0, 1]"},
+        {"warn_overlap_ratio = 0.6", "run.warn_overlap_ratio", "must not exceed run.max_overlap_ratio = 0.5"},
+        {"domain_height = -1", "run.domain_height", ">= 0"},
+        {"allow_initial_overlap = 1", "run.allow_initial_overlap", "true or false"},
+        {"on_domain_exit = \"delete\"", "run.on_domain_exit", "\"error\", \"stop\""},
+        {"on_domain_exit = 3", "run.on_domain_exit", "\"error\", \"stop\""},
+    };
+    for (const Case& k : cases) {
+        const std::string msg = refusal_of(std::string(k.line) + "\n");
+        EXPECT_NE(msg.find("run.toml:3:"), std::string::npos) << k.line << " -> " << msg;
+        EXPECT_NE(msg.find(k.key), std::string::npos) << k.line << " -> " << msg;
+        EXPECT_NE(msg.find(k.why), std::string::npos) << k.line << " -> " << msg;
+    }
+}
+
+TEST(ConfigRun, WedgeOnlyKeysAreUnknownForSettle) {
+    try {
+        parse_config("[run]\nexperiment = \"settle\"\non_domain_exit = \"stop\"\n", "run.toml", {});
+        ADD_FAILURE() << "accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("unknown key 'run.on_domain_exit'"), std::string::npos) << e.what();
+    }
+}

@@ -631,6 +631,20 @@ int cmd_run(const CommonArgs& a, const std::string& out_arg, bool resume) {
                          omp_get_max_threads()));
     log.line(fmt::format("dt = {:.6g} s, stability limit {:.6g} s (margin {:.2f}x), t_c = {:.1f} steps",
                          t.dt, t.dt_crit, t.margin(), t.t_collision / t.dt));
+    // RELIABILITY-CHECKLIST 3: stable but coarse steps are allowed with a warning.
+    std::vector<std::string> coarse;
+    if (t.t_collision / t.dt < 20.0)
+        coarse.push_back(fmt::format("a collision (t_c = {:.4g} s) spans only {:.1f} steps of dt = {:.4g} s, fewer than "
+                                     "20; lower numerics.safety or numerics.dt for accurate contacts",
+                                     t.t_collision, t.t_collision / t.dt, t.dt));
+    if (is_wedge(c) && c.wedge.v * t.dt > 0.1 * c.packing.r_min)
+        coarse.push_back(fmt::format("the belt moves {:.4g} m per step, more than 0.1 r_min = {:.4g} m; lower "
+                                     "wedge.v or numerics.dt",
+                                     c.wedge.v * t.dt, 0.1 * c.packing.r_min));
+    for (const auto& w : coarse) {
+        log.line("warning: " + w);
+        fmt::print(stderr, "orodem: warning: {}\n", w);
+    }
     if (!is_wedge(c)) {
         LineFile series(dir + "/series.csv");
         // Header always; rows only when the layer is settled now (not cached).

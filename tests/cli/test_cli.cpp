@@ -173,7 +173,7 @@ TEST_F(Cli, CheckOfValidConfigPrintsDtAndCountAndWritesNothing) {
     EXPECT_GT(n, 10u);
     EXPECT_HAS(r.out, "dt");
     EXPECT_HAS(r.out, "particles");
-    EXPECT_HAS(r.out, " " + std::to_string(n) + " ");
+    EXPECT_HAS(r.out, std::string(" ") + std::to_string(n) + " ");
     EXPECT_EQ(listing(work_), before);
     EXPECT_FALSE(fs::exists(cache));
 }
@@ -242,4 +242,18 @@ TEST_F(Cli, SetOverridesReachTheResolvedConfig) {
     EXPECT_EQ(c.run.seed, 5u);
     EXPECT_EQ(c.packing.seed, 5u);
     EXPECT_EQ(c.run.threads, 1);
+}
+
+TEST_F(Cli, CoarseTimestepRunsWithAWarning) {
+    // safety 0.2 puts 11 steps in a collision (22.2 at the default 0.1).
+    write(work_ / "coarse.toml", tiny_config(root_ / "cache") + "[numerics]\nsafety = 0.2\n");
+    const Result r = orodem("run coarse.toml --out coarse");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_HAS(r.err, "orodem: warning: a collision (t_c = ");
+    EXPECT_HAS(r.err, "spans only 11.1 steps");
+    EXPECT_HAS(slurp(work_ / "coarse" / "log.txt"), "warning: a collision");
+    write(work_ / "fine.toml", tiny_config(root_ / "cache"));
+    const Result fine = orodem("run fine.toml --out fine");
+    ASSERT_EQ(fine.status, 0) << fine.err;
+    EXPECT_EQ(fine.err.find("warning"), std::string::npos) << fine.err;
 }

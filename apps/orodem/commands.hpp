@@ -30,6 +30,10 @@ int cmd_plot(const std::vector<std::string>& run_dirs, const std::string& out);
 /// snapshots nearest each S of `at` (all when empty) into RUN_DIR/figures/.
 int cmd_render(const std::string& run_dir, const std::vector<double>& at, const std::string& format, int width);
 
+/// orodem taper (cmd_taper.cpp): the critical surface slopes of a dry noncohesive
+/// wedge (Dahlen 1984); exactly one of phi_b_deg and mu_b is given, the other is NaN.
+int cmd_taper(double phi_deg, double phi_b_deg, double mu_b, double beta_deg);
+
 /// Throws ConfigError unless dir exists and holds a config.toml.
 void require_run_dir(const std::string& dir);
 

@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "commands.hpp"
 #include "orodem/core/error.hpp"
 
@@ -69,6 +71,16 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(200, 20000))
         ->capture_default_str();
 
+    double taper_phi = 0.0, taper_phib = std::nan(""), taper_mu_b = std::nan(""), taper_beta = 0.0;
+    auto* taper = app.add_subcommand("taper", "Critical surface slopes of a dry noncohesive Coulomb wedge "
+                                              "(exact solution of Dahlen 1984, both branches)");
+    taper->add_option("--phi", taper_phi, "Internal friction angle phi, degrees, in (0, 90)")->required();
+    auto* taper_phib_opt = taper->add_option("--phib", taper_phib, "Basal friction angle phi_b, degrees, in [0, phi)");
+    taper->add_option("--mu-b", taper_mu_b, "Basal friction coefficient mu_b = tan(phi_b), instead of --phib")
+        ->excludes(taper_phib_opt);
+    taper->add_option("--beta", taper_beta, "Basal dip beta, degrees, positive toward the hinterland")
+        ->capture_default_str();
+
     auto* bench = app.add_subcommand("bench", "Performance benchmarks");
     bench->require_subcommand(1);
     auto* pile = bench->add_subcommand("pile", "The canonical 30,000-disc pile of ../shared/bench (checks the LAMMPS reference)");
@@ -95,6 +107,7 @@ int main(int argc, char** argv) {
         if (*sweep) return cmd_sweep(sweep_args, sweep_vary, sweep_out);
         if (*plot) return cmd_plot(plot_dirs, plot_out);
         if (*render) return cmd_render(render_dir, render_at, render_format, render_width);
+        if (*taper) return cmd_taper(taper_phi, taper_phib, taper_mu_b, taper_beta);
         if (*pile) return cmd_bench_pile(pile_file, pile_steps, pile_threads);
     } catch (const ConfigError& e) {
         fmt::print(stderr, "orodem: error: {}\n", e.what());

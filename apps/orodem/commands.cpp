@@ -398,10 +398,10 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
         const double secs = progress.elapsed();
         const double rate = static_cast<double>(sim.step_count - first_step) / std::max(secs, 1e-9);
         log.line(fmt::format("S = {:.3f}: H/h0 = {:.3f}, alpha = {:.2f}, beta = {:.2f}; health: max overlap/R = {:.4f}, "
-                             "max speed = {:.3g} m/s, contacts/disc = {:.2f}; {:.0f} steps/s",
+                             "max speed = {:.3g} m/s, contacts/disc = {:.2f}; {} discs asleep; {:.0f} steps/s",
                              S, m.H_over_h0, m.alpha_deg, m.beta_deg, sim.max_overlap_ratio(), sim.max_speed(),
                              static_cast<double>(sim.touching_contacts()) / static_cast<double>(sim.particles.size()),
-                             rate));
+                             sim.sleeping_count(), rate));
         progress.show("S = {:.3f} / {:g}, {:.0f} steps/s, {:.0f} s left", S, c.wedge.s_max, rate,
                       static_cast<double>(total_steps - std::min(total_steps, sim.step_count)) / std::max(rate, 1e-9));
     };

@@ -21,6 +21,22 @@ TEST(Threads, SeriesSnapshotsAndPicturesAreByteIdenticalAt1To4Threads) {
                               "[wedge]\nv = 0.3\ns_max = 0.1\noutput_ds = 0.0125\npro_margin = 300.0\nretro_length = 6.0\n"
                               "[packing]\nh0 = 6.0\nr_min = 0.5\nr_max = 1.0\ncache_dir = \"" +
                                   (root / "cache").string() + "\"\n");
+    // Sleeping zones (engine/sleep.cpp) change which slot and pair ranges
+    // are stepped: the same comparison with them on, at 1 and 3 threads.
+    for (int threads : {1, 3}) {
+        const fs::path run = root / (std::string("sleep") + std::to_string(threads));
+        const Proc p = start({"run", (root / "wide.toml").string(), "--out", run.string(), "--threads",
+                              std::to_string(threads), "--set", "wedge.sleep=true", "--set",
+                              "wedge.s_max=0.2"},
+                             run.string());
+        ASSERT_EQ(wait_for(p), 0) << slurp(p.err);
+        if (threads > 1) expect_same_outputs(root / "sleep1", run);
+        // The plate is at belt speed by S = 0.2 and most of it asleep.
+        const std::string log = slurp(run / "log.txt");
+        const auto at = log.rfind(" discs asleep");
+        ASSERT_NE(at, std::string::npos);
+        EXPECT_GT(std::stoul(log.substr(log.rfind("; ", at) + 2)), 1000u) << log.substr(log.rfind("; ", at));
+    }
     for (int threads = 1; threads <= 4; ++threads) {
         const fs::path run = root / (std::string("t") + std::to_string(threads));
         const Proc p = start({"run", (root / "wide.toml").string(), "--out", run.string(), "--threads",

@@ -34,7 +34,7 @@ TEST(ConfigRun, DefaultsResolve) {
     EXPECT_EQ(c.run.checkpoint_every_outputs, 1);
     EXPECT_DOUBLE_EQ(c.run.checkpoint_minutes, 10.0);
     EXPECT_DOUBLE_EQ(c.run.max_overlap_ratio, 0.5);
-    EXPECT_DOUBLE_EQ(c.run.warn_overlap_ratio, 0.05);
+    EXPECT_DOUBLE_EQ(c.run.warn_overlap_ratio, 0.1);
     EXPECT_FALSE(c.run.allow_initial_overlap);
     EXPECT_EQ(c.run.on_domain_exit, "error");
     EXPECT_DOUBLE_EQ(c.run.domain_height, 0.0);
@@ -76,5 +76,33 @@ TEST(ConfigRun, WedgeOnlyKeysAreUnknownForSettle) {
         ADD_FAILURE() << "accepted";
     } catch (const ConfigError& e) {
         EXPECT_NE(std::string(e.what()).find("unknown key 'run.on_domain_exit'"), std::string::npos) << e.what();
+    }
+}
+
+TEST(ConfigRun, SleepKeysOfTheWedgeTable) {
+    const Config c = parse_config(kWedge, "run.toml", {});
+    EXPECT_FALSE(c.wedge.sleep);
+    EXPECT_DOUBLE_EQ(c.wedge.sleep_tolerance, 0.01);
+    EXPECT_DOUBLE_EQ(c.wedge.sleep_buffer, 2.0);
+    struct Case {
+        const char* line;
+        const char* why;
+    };
+    const Case cases[] = {
+        {"sleep = 1", "true or false"},
+        {"sleep_tolerance = 0", "(0, 1]"},
+        {"sleep_tolerance = 2", "(0, 1]"},
+        {"sleep_buffer = 0", "(0, 100]"},
+    };
+    for (const Case& k : cases) {
+        try {
+            parse_config(kWedge + "[wedge]\n" + k.line + "\n", "run.toml", {});
+            ADD_FAILURE() << "accepted: " << k.line;
+        } catch (const ConfigError& e) {
+            const std::string msg = e.what();
+            EXPECT_NE(msg.find("run.toml:4:"), std::string::npos) << msg;
+            EXPECT_NE(msg.find("wedge.sleep"), std::string::npos) << msg;
+            EXPECT_NE(msg.find(k.why), std::string::npos) << msg;
+        }
     }
 }

@@ -14,7 +14,7 @@
 // as eq. 5 is written.
 //
 // With v' = 0 the same boundary is a viscous-Coulomb stationary base.
-// Per-disc work in a parallel loop over discs; each iteration writes only its
+// Per-disc work in a loop over the discs with a candidate contact with the base (Simulation::wall_discs, listed at each rebuild); each iteration writes only its
 // own disc's force, so the result is independent of the thread count.
 #pragma once
 

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "orodem/core/hash.hpp"
 #include "orodem/core/parallel.hpp"
@@ -64,10 +65,24 @@ void Simulation::initialize() {
 }
 
 void Simulation::rebuild_pairs() {
+    double x_lo = -std::numeric_limits<double>::infinity(), x_hi = std::numeric_limits<double>::infinity();
+    if (params.sleep.enabled && builder_.rebuild_count() > 0) sleep_bounds(x_lo, x_hi);
     builder_.rebuild(particles, bonds, walls, builder_settings(), contacts, wall_contacts);
     wall_shift_.assign(walls.size(), Vec2{});
     max_disp2_ = 0.0;
     force_rebuild_ = false;
+    last_rebuild_step_ = step_count;
+    apply_sleep(x_lo, x_hi);
+    index_wall_discs();
+}
+
+void Simulation::index_wall_discs() {
+    wall_discs_.resize(walls.size());
+    for (auto& l : wall_discs_) l.clear();  // keeps the capacity: no allocation once grown
+    const WallContactStore& ws = wall_contacts;
+    for (std::size_t i = 0; i + 1 < ws.begin.size(); ++i)
+        for (std::uint32_t k = ws.begin[i]; k < ws.begin[i + 1]; ++k)
+            wall_discs_[ws.wall[k]].push_back(static_cast<std::uint32_t>(i));
 }
 
 namespace {
@@ -106,29 +121,32 @@ GatherData Simulation::gather_data(bool update_history, bool kick) {
 }
 
 template <bool kUpdateHistory>
-void Simulation::pair_forces() {
-    // Phase A: every candidate pair evaluates the law into its own slots
-    // (engine/pair_kernel.hpp: SIMD lanes, bit-identical to one pair at a time).
+void Simulation::pair_forces(bool all) {
+    // Phase A: every candidate pair (or every awake one) evaluates the law
+    // into its own slots (engine/pair_kernel.hpp: SIMD lanes, bit-identical
+    // to one pair at a time).
     const PairKernelData kd = pair_kernel_data(kUpdateHistory);
-    const std::size_t npairs = contacts.size();
+    const std::size_t first = all ? 0 : pairs_begin_;
+    const std::size_t npairs = (all ? contacts.size() : pairs_end_) - first;
 #pragma omp parallel if(static_cast<long long>(npairs) >= kParallelMin)
     {
         const auto [b, e] = thread_range(npairs, 64);
-        if (b < e) eval_pair_range(kd, b, e);
+        if (b < e) eval_pair_range(kd, first + b, first + e);
     }
 }
 
 template <bool kUpdateHistory, bool kKick>
-void Simulation::gather_forces() {
-    // Phase B: per disc, in a fixed order, gravity, its owned then incoming
-    // pairs' forces, its wall contacts (evaluated here), and with kKick the
-    // second half kick (engine/pair_kernel.hpp).
+void Simulation::gather_forces(bool all) {
+    // Phase B: per disc (every one, or every awake one), in a fixed order,
+    // gravity, its owned then incoming pairs' forces, its wall contacts
+    // (evaluated here), and with kKick the second half kick (engine/pair_kernel.hpp).
     const GatherData gd = gather_data(kUpdateHistory, kKick);
-    const std::size_t n = particles.size();
+    const std::size_t first = all ? 0 : awake_begin_;
+    const std::size_t n = (all ? particles.size() : awake_end_) - first;
 #pragma omp parallel if(static_cast<long long>(n) >= kParallelMin)
     {
         const auto [b, e] = thread_range(n, 8);
-        if (b < e) gather_range(gd, b, e);
+        if (b < e) gather_range(gd, first + b, first + e);
     }
 }
 
@@ -155,8 +173,8 @@ void Simulation::pair_forces_gather_kick() {
 }
 
 // Out-of-line instances for bench/bench_kernels.cpp (KernelBench).
-template void Simulation::pair_forces<true>();
-template void Simulation::gather_forces<true, false>();
+template void Simulation::pair_forces<true>(bool);
+template void Simulation::gather_forces<true, false>(bool);
 
 template <bool kUpdateHistory>
 void Simulation::compute_forces() {
@@ -239,11 +257,12 @@ bool Simulation::step_in_one_region(double wall_move) {
 }
 
 void Simulation::kick() {
+    // Sleeping discs have inv_mass = inv_inertia = 0: only the awake range.
     ParticleStore& p = particles;
     const double half = 0.5 * params.dt;
-    const long long n = static_cast<long long>(p.size());
-#pragma omp parallel for schedule(static) if(n >= kParallelMin)
-    for (long long ii = 0; ii < n; ++ii) {
+    const long long b = awake_begin_, e = awake_end_;
+#pragma omp parallel for schedule(static) if(e - b >= kParallelMin)
+    for (long long ii = b; ii < e; ++ii) {
         const std::size_t i = static_cast<std::size_t>(ii);
         p.v[i] += (half * p.inv_mass[i]) * p.force[i];
         p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
@@ -302,11 +321,14 @@ void Simulation::step() {
         const double wall_move = move_walls();
         for (auto& b : boundaries) b->after_drift(*this);
         lap(times_.boundaries);
-        if (needs_rebuild(wall_move)) rebuild_pairs();
+        // A rebuild step evaluates every pair and disc (fresh forces and
+        // diagnostics for the sleeping zones too); other steps the awake ones.
+        const bool rebuilt = needs_rebuild(wall_move);
+        if (rebuilt) rebuild_pairs();
         lap(times_.rebuild);
-        pair_forces<true>();
+        pair_forces<true>(rebuilt);
         lap(times_.pair_forces);
-        gather_forces<true, false>();
+        gather_forces<true, false>(rebuilt);
         lap(times_.gather);
         for (auto& b : boundaries) b->add_forces(*this);
         lap(times_.boundaries);

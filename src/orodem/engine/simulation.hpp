@@ -32,6 +32,18 @@
 
 namespace orodem {
 
+/// Sleeping zones (engine/sleep.cpp): discs beyond the outermost disc that
+/// departed from rigid motion, plus a buffer, move rigidly with the velocity
+/// of their side and skip all force work between neighbour rebuilds.
+struct SleepParams {
+    bool enabled = false;
+    double x_split = 0.0;          // the rigid velocity is u_left for x < x_split, u_right beyond [m]
+    Vec2 u_left{}, u_right{};      // [m/s]
+    bool left = false, right = false;  // which ends may sleep
+    double tolerance = 0.0;        // a disc is active when |x - x_rebuild - u t| exceeds this between rebuilds [m]
+    double buffer = 0.0;           // awake margin beyond the outermost active disc [m]
+};
+
 struct SimParams {
     LawParams law;              // disc-disc and bond law
     double dt = 0.0;            // timestep [s]
@@ -39,6 +51,7 @@ struct SimParams {
     double skin = 0.0;          // Verlet skin [m]
     bool periodic_x = false;    // periodic in x with period period_x
     double period_x = 0.0;      // W [m]
+    SleepParams sleep;          // off unless enabled
 };
 
 /// Wall time spent in each phase of step(), accumulated since the start or
@@ -95,6 +108,11 @@ public:
     /// Total force exerted by discs on wall w [N] (opposite of the forces on the discs).
     Vec2 wall_force(std::size_t w) const;
     std::uint64_t rebuild_count() const { return builder_.rebuild_count(); }
+    /// Slots of the discs with a candidate contact with wall w (ascending),
+    /// valid until the next rebuild: boundaries loop over these, not all discs.
+    const std::vector<std::uint32_t>& wall_discs(std::size_t w) const { return wall_discs_[w]; }
+    /// Discs in the sleeping zones now (engine/sleep.cpp).
+    std::size_t sleeping_count() const { return particles.size() - (awake_end_ - awake_begin_); }
     /// Hash of the full dynamic state in id order (x, v, θ, ω, and ξ by key).
     std::uint64_t state_hash() const;
 
@@ -116,10 +134,15 @@ private:
     void kick_drift();       // v += F/m dt/2, ω += T/I dt/2, x += v dt, θ += ω dt; max displacement
     bool needs_rebuild(double wall_move) const;
     void rebuild_pairs();
+    // Sleeping zones (engine/sleep.cpp): the bounds from the motion since the
+    // last rebuild (before it), then flags, inverse masses and the awake
+    // slot and pair ranges (after it, in the new slot order).
+    void sleep_bounds(double& x_lo, double& x_hi) const;
+    void apply_sleep(double x_lo, double x_hi);
     template <bool kUpdateHistory>
-    void pair_forces();      // phase A
+    void pair_forces(bool all = true);    // phase A; all = false: the awake pairs only
     template <bool kUpdateHistory, bool kKick>
-    void gather_forces();    // phase B; kKick: also the second half kick
+    void gather_forces(bool all = true);  // phase B; kKick: also the second half kick
     void kick();             // second half kick
     void pair_forces_gather_kick();  // phases A, B and kick() in one parallel region
     bool step_in_one_region(double wall_move);  // kick_drift + (no rebuild) A, B, kick; false: rebuild first
@@ -136,6 +159,14 @@ private:
     double max_disp2_ = 0.0;          // largest |x - x_ref|² since the last rebuild [m²]
     bool force_rebuild_ = false;
     PhaseTimes times_;
+    // Sleeping zones: slots [awake_begin_, awake_end_) are stepped and pairs
+    // [pairs_begin_, pairs_end_) evaluated between rebuilds (all of them at a
+    // rebuild step and when sleeping is off); the step of the last rebuild.
+    std::uint32_t awake_begin_ = 0, awake_end_ = 0;
+    std::uint32_t pairs_begin_ = 0, pairs_end_ = 0;
+    std::uint64_t last_rebuild_step_ = 0;
+    std::vector<std::vector<std::uint32_t>> wall_discs_;  // per wall: slots with a candidate contact
+    void index_wall_discs();  // wall_discs_ from wall_contacts (after a rebuild or a restore)
     double kicked_at_ = 0.0;          // omp_get_wtime() when the drift ended (phase timers)
     double pairs_done_at_ = 0.0;      // omp_get_wtime() when phase A ended (phase timers)
 };

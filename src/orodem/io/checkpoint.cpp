@@ -21,6 +21,11 @@ struct SimulationAccess {
         w.put_vector(s.wall_shift_);
         w.put(s.max_disp2_);
         w.put(static_cast<std::uint8_t>(s.force_rebuild_ ? 1 : 0));
+        w.put(s.awake_begin_);
+        w.put(s.awake_end_);
+        w.put(s.pairs_begin_);
+        w.put(s.pairs_end_);
+        w.put(s.last_rebuild_step_);
     }
     struct Saved {
         std::vector<Vec2> x_ref;
@@ -28,6 +33,8 @@ struct SimulationAccess {
         std::vector<Vec2> wall_shift;
         double max_disp2 = 0.0;
         bool force_rebuild = false;
+        std::uint32_t awake_begin = 0, awake_end = 0, pairs_begin = 0, pairs_end = 0;  // engine/sleep.cpp
+        std::uint64_t last_rebuild_step = 0;
     };
     static Saved read(ByteReader& r) {
         Saved v;
@@ -36,6 +43,11 @@ struct SimulationAccess {
         r.get_vector(v.wall_shift);
         r.get(v.max_disp2);
         v.force_rebuild = r.get<std::uint8_t>() != 0;
+        r.get(v.awake_begin);
+        r.get(v.awake_end);
+        r.get(v.pairs_begin);
+        r.get(v.pairs_end);
+        r.get(v.last_rebuild_step);
         return v;
     }
     /// After particles and walls are in place: the derived caches and the saved internals.
@@ -48,6 +60,12 @@ struct SimulationAccess {
         s.wall_shift_ = std::move(v.wall_shift);
         s.max_disp2_ = v.max_disp2;
         s.force_rebuild_ = v.force_rebuild;
+        s.awake_begin_ = v.awake_begin;
+        s.awake_end_ = v.awake_end;
+        s.pairs_begin_ = v.pairs_begin;
+        s.pairs_end_ = v.pairs_end;
+        s.last_rebuild_step_ = v.last_rebuild_step;
+        s.index_wall_discs();
     }
 };
 
@@ -322,6 +340,10 @@ void decode_checkpoint(std::string_view bytes, std::uint64_t expected_config_has
         r.get(run.surface_y_mean);
         expect_tag(r, "end");
         if (r.remaining() != 0) bad(fmt::format("{} bytes left over", r.remaining()));
+        if (!(internals.awake_begin <= internals.awake_end && internals.awake_end <= p.size() &&
+              internals.pairs_begin <= internals.pairs_end && internals.pairs_end <= c.size() &&
+              internals.last_rebuild_step <= step))
+            bad("sleeping-zone ranges out of bounds");
     } catch (const CheckpointError&) {
         throw;
     } catch (const IoError& e) {

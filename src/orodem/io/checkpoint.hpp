@@ -31,7 +31,7 @@
 
 namespace orodem {
 
-inline constexpr std::uint32_t kCheckpointVersion = 1;
+inline constexpr std::uint32_t kCheckpointVersion = 2;  // 2: sleeping-zone ranges
 
 /// A checkpoint that cannot be used: corrupt, truncated, another format
 /// version, not a checkpoint. what() says which. (An I/O problem: exit 4.)

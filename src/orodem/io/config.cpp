@@ -358,6 +358,9 @@ Config read(const toml::table& root, const std::string& file) {
             w.retro_length = r.number("retro_length", w.retro_length, {1.0, 1000.0, false, false});
         w.toe_threshold = r.number("toe_threshold", w.toe_threshold, {0.0, 10.0, true, false});
         w.column_width = r.number("column_width", w.column_width, non_negative());
+        w.sleep = r.boolean("sleep", w.sleep);
+        w.sleep_tolerance = r.number("sleep_tolerance", w.sleep_tolerance, {0.0, 1.0, true, false});
+        w.sleep_buffer = r.number("sleep_buffer", w.sleep_buffer, {0.0, 100.0, true, false});
         r.finish();
     } else if (const toml::node* n = root.get("wedge")) {
         throw ConfigError(fmt::format("{}: table [wedge] is only read by the wedge experiments, not run.experiment = \"{}\"; "

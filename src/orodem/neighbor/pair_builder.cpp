@@ -89,7 +89,7 @@ void PairBuilder::sort_by_cell(ParticleStore& p, const Settings& s) {
         int cy = static_cast<int>((p.x[k].y - grid_.y0) / grid_.cell);
         cx = std::clamp(cx, 0, grid_.nx - 1);
         cy = std::clamp(cy, 0, grid_.ny - 1);
-        cell_of_[k] = static_cast<std::uint32_t>(cy * grid_.nx + cx);
+        cell_of_[k] = static_cast<std::uint32_t>(cx * grid_.ny + cy);  // column-major: slots ordered by x column
         ++cell_start_[cell_of_[k] + 1];
     }
     for (std::size_t c = 0; c < ncell; ++c) cell_start_[c + 1] += cell_start_[c];
@@ -134,8 +134,8 @@ void PairBuilder::build_pairs(const ParticleStore& p, const BondTopology& bonds,
             if (norm2(d) < cut * cut) emit(j, shift, false);
         };
         const std::uint32_t c = cell_of_[i];
-        const int cx = static_cast<int>(c % static_cast<std::uint32_t>(nx));
-        const int cy = static_cast<int>(c / static_cast<std::uint32_t>(nx));
+        const int cx = static_cast<int>(c / static_cast<std::uint32_t>(ny));
+        const int cy = static_cast<int>(c % static_cast<std::uint32_t>(ny));
         for (std::uint32_t j = static_cast<std::uint32_t>(i) + 1; j < cell_start_[c + 1]; ++j) consider(j, 0);
         for (const auto& st : kStencil) {
             int jx = cx + st[0];
@@ -152,7 +152,7 @@ void PairBuilder::build_pairs(const ParticleStore& p, const BondTopology& bonds,
                 shift = jx < 0 ? -1 : 1;
                 jx = jx < 0 ? jx + nx : jx - nx;
             }
-            const std::uint32_t cj = static_cast<std::uint32_t>(jy * nx + jx);
+            const std::uint32_t cj = static_cast<std::uint32_t>(jx * ny + jy);
             for (std::uint32_t j = cell_start_[cj]; j < cell_start_[cj + 1]; ++j) consider(j, shift);
         }
     };

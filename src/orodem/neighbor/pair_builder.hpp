@@ -3,7 +3,9 @@
 // At a rebuild it (1) saves the tangential history of the old pairs by id-pair
 // key, (2) wraps periodic positions, (3) counting-sorts the discs by cell
 // (stable, so the order is a function of the previous order only) and
-// permutes every particle column, (4) lists candidate pairs with a half
+// permutes every particle column; cells are numbered column by column (x
+// major), so the discs of one x column of cells occupy one slot range (the
+// sleeping zones of engine/sleep rely on it), (4) lists candidate pairs with a half
 // stencil (same cell with j > i, then cells E, NW, N, NE) plus the cluster
 // bonds owned by their lower slot, count → exclusive scan → fill, so the pair
 // order never depends on the thread split, (5) does the same for disc-wall
@@ -43,6 +45,11 @@ public:
                  const Settings& s, ContactStore& contacts, WallContactStore& wall_contacts);
 
     const GridInfo& grid() const { return grid_; }
+    /// First slot of cell column cx (cx in [0, nx]; nx gives the disc count),
+    /// valid until the next rebuild.
+    std::uint32_t column_start(int cx) const {
+        return cell_start_[static_cast<std::size_t>(cx) * static_cast<std::size_t>(grid_.ny)];
+    }
     const std::vector<Vec2>& x_ref() const { return x_ref_; }
     std::vector<Vec2>& x_ref() { return x_ref_; }
     std::uint64_t rebuild_count() const { return rebuilds_; }

@@ -65,6 +65,18 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer) {
     sim.walls.push_back({{x_pro, 0.0}, {x_pro, tall}, {w.v, 0.0}, 0.0, false, false, 0.0});
     if (!backstop) sim.walls.push_back({{x_retro, 0.0}, {x_retro, tall}, {}, 0.0, false, false, 0.0});
 
+    // Sleeping zones (engine/sleep.cpp): the incoming plate rides at (v, 0)
+    // left of the S point; the retroside rests (fixed or Coulomb base).
+    SleepParams& sp = sim.params.sleep;
+    sp.enabled = w.sleep;
+    sp.x_split = 0.0;
+    sp.u_left = {w.v, 0.0};
+    sp.u_right = {};
+    sp.left = true;
+    sp.right = !backstop;
+    sp.tolerance = w.sleep_tolerance * c.packing.r_min;
+    sp.buffer = w.sleep_buffer * h0;
+
     auto base = std::make_unique<ConveyorTraction>(kWallProBase, w.v, w.mu_bp, w.traction_gain);
     ws.base = base.get();
     sim.boundaries.push_back(std::move(base));

@@ -18,6 +18,7 @@ namespace orodem {
 /// Per-disc flag bits.
 enum ParticleFlag : std::uint8_t {
     kFlagFixed = 1u << 0,  ///< held fixed in space (inv_mass = inv_inertia = 0)
+    kFlagAsleep = 1u << 1, ///< in a sleeping zone: moves rigidly, inv_mass = inv_inertia = 0 (engine/sleep.cpp)
 };
 
 struct ParticleStore {
@@ -65,6 +66,12 @@ struct ParticleStore {
         inv_inertia[slot] = 0.0;
         v[slot] = {};
         omega[slot] = 0.0;
+    }
+
+    /// The integrator's inverse mass and inertia of a free disc (as add() sets them).
+    void set_free_inertia(std::size_t slot) {
+        inv_mass[slot] = 1.0 / mass[slot];
+        inv_inertia[slot] = 2.0 / (mass[slot] * radius[slot] * radius[slot]);
     }
 
     /// Rebuilds slot_of_id from id.

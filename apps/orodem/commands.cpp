@@ -88,6 +88,7 @@ std::string choose_run_dir(const std::string& out, const std::string& config_pat
 
 int cmd_check(const CommonArgs& a) {
     const Config c = load(a);
+    if (is_calibration(c)) return check_calibration(c);
     const TimestepInfo t = timestep_for(c);
     if (is_wedge(c)) check_belt_speed(c);
     const std::size_t n = generated_particle_count(c);
@@ -619,6 +620,9 @@ int resume_run(const Config& c, const std::string& dir) {
 
 int cmd_run(const CommonArgs& a, const std::string& out_arg, bool resume) {
     const Config c = load(a);
+    if (is_calibration(c))
+        throw ConfigError(fmt::format("{}: run.experiment = \"{}\" is a calibration experiment: run it with orodem "
+                                      "calibrate {}", c.path, c.run.experiment, c.path));
     const TimestepInfo t = timestep_for(c);
     if (is_wedge(c)) check_belt_speed(c);
     set_threads(c);
@@ -691,6 +695,10 @@ int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& o
         CommonArgs one = a;
         one.sets.push_back(key + "=" + v);
         const Config c = load(one);
+        if (is_calibration(c))
+            throw ConfigError(fmt::format("{}: run.experiment = \"{}\" is a calibration experiment, which sweeps "
+                                          "its own [calibrate] lists: run it with orodem calibrate", c.path,
+                                          c.run.experiment));
         timestep_for(c);
         if (is_wedge(c)) check_belt_speed(c);
         all_wedges = all_wedges && is_wedge(c);

@@ -34,6 +34,12 @@ int cmd_render(const std::string& run_dir, const std::vector<double>& at, const 
 /// wedge (Dahlen 1984); exactly one of phi_b_deg and mu_b is given, the other is NaN.
 int cmd_taper(double phi_deg, double phi_b_deg, double mu_b, double beta_deg);
 
+/// orodem calibrate (cmd_calibrate.cpp): the calibration experiment of CONFIG into a new run
+/// directory with report.md; check_calibration: what orodem check prints for one.
+int cmd_calibrate(const CommonArgs& a, const std::string& out_arg);
+struct Config;
+int check_calibration(const Config& c);
+
 /// Throws ConfigError unless dir exists and holds a config.toml.
 void require_run_dir(const std::string& dir);
 

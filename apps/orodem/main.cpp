@@ -81,6 +81,15 @@ int main(int argc, char** argv) {
     taper->add_option("--beta", taper_beta, "Basal dip beta, degrees, positive toward the hinterland")
         ->capture_default_str();
 
+    CommonArgs calib_args;
+    std::string calib_out;
+    auto* calib = app.add_subcommand("calibrate", "Run the calibration experiment of CONFIG (biaxial, basal-friction, "
+                                                  "repose) into a new run directory with report.md");
+    calib->add_option("config", calib_args.config, "TOML config file")->required();
+    calib->add_option("--out", calib_out, "Output directory (new or empty); default runs/<config name>");
+    calib->add_option("--set", calib_args.sets, "Override a config value")->take_all();
+    calib->add_option("--threads", calib_args.threads, "OpenMP threads (0 = all cores)");
+
     auto* bench = app.add_subcommand("bench", "Performance benchmarks");
     bench->require_subcommand(1);
     auto* pile = bench->add_subcommand("pile", "The canonical 30,000-disc pile of ../shared/bench (checks the LAMMPS reference)");
@@ -105,6 +114,7 @@ int main(int argc, char** argv) {
         }
         if (*check) return cmd_check(check_args);
         if (*sweep) return cmd_sweep(sweep_args, sweep_vary, sweep_out);
+        if (*calib) return cmd_calibrate(calib_args, calib_out);
         if (*plot) return cmd_plot(plot_dirs, plot_out);
         if (*render) return cmd_render(render_dir, render_at, render_format, render_width);
         if (*taper) return cmd_taper(taper_phi, taper_phib, taper_mu_b, taper_beta);

@@ -141,6 +141,61 @@ public:
         out_.insert_or_assign(key, v);
         return v;
     }
+    /// A list of 1..max_n distinct numbers, each in r (integers are taken as numbers).
+    std::vector<double> numbers(const char* key, const std::vector<double>& def, Range r, std::size_t max_n) {
+        const toml::node* n = find(key);
+        std::vector<double> v = def;
+        if (n) {
+            const std::string what = fmt::format("must be a list of 1 to {} distinct values, each {}", max_n, r.text());
+            auto a = n->as_array();
+            if (!a) fail(*n, key, fmt::format("{}, not {}", what, type_name(*n)));
+            if (a->empty() || a->size() > max_n) fail(*n, key, what);
+            v.clear();
+            for (const toml::node& e : *a) {
+                double x = 0.0;
+                if (auto f = e.as_floating_point()) x = f->get();
+                else if (auto i = e.as_integer()) x = static_cast<double>(i->get());
+                else fail(*n, key, fmt::format("{}, not a list with {}", what, type_name(e)));
+                if (!r.contains(x)) fail(*n, key, what);
+                for (double y : v)
+                    if (y == x) fail(*n, key, fmt::format("{} ({:g} is listed twice)", what, x));
+                v.push_back(x);
+            }
+        }
+        toml::array out;
+        for (double x : v) out.push_back(x);
+        out_.insert_or_assign(key, std::move(out));
+        return v;
+    }
+    /// A list of 1..N distinct strings, each one of `allowed`.
+    std::vector<std::string> choices(const char* key, const std::vector<std::string>& def,
+                                     std::initializer_list<const char*> allowed) {
+        std::string list;
+        for (const char* a : allowed) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", a);
+        const std::string what = fmt::format("must be a list of distinct values, each one of {}", list);
+        const toml::node* n = find(key);
+        std::vector<std::string> v = def;
+        if (n) {
+            auto a = n->as_array();
+            if (!a) fail(*n, key, fmt::format("{}, not {}", what, type_name(*n)));
+            if (a->empty()) fail(*n, key, what);
+            v.clear();
+            for (const toml::node& e : *a) {
+                auto str = e.as_string();
+                if (!str) fail(*n, key, fmt::format("{}, not a list with {}", what, type_name(e)));
+                bool ok = false;
+                for (const char* al : allowed) ok = ok || str->get() == al;
+                if (!ok) fail(*n, key, what);
+                for (const auto& y : v)
+                    if (y == str->get()) fail(*n, key, fmt::format("{} (\"{}\" is listed twice)", what, y));
+                v.push_back(str->get());
+            }
+        }
+        toml::array out;
+        for (const auto& x : v) out.push_back(x);
+        out_.insert_or_assign(key, std::move(out));
+        return v;
+    }
     /// A value error found after reading (e.g. r_min > r_max).
     [[noreturn]] void refuse(const char* key, const std::string& why) const {
         const toml::node* n = t_ ? t_->get(key) : nullptr;
@@ -296,6 +351,78 @@ void apply_override(toml::table& root, const Override& o, const std::string& fil
     t->insert_or_assign(std::string(path), *parsed.get("v"));
 }
 
+/// [calibrate] of a calibration experiment (after [material] and [packing],
+/// whose mu and kind are the defaults of the swept lists). `section` opens a
+/// table in the resolved config.
+template <class Section>
+void read_calibrate(Config& c, Section&& section, const std::string& file) {
+    auto [in, o] = section("calibrate");
+    Reader r(in, "calibrate.", file, *o, toml::source_region{});
+    CalibrateConfig& k = c.calibrate;
+    const std::string& e = c.run.experiment;
+    constexpr std::size_t kMaxValues = 20;
+    k.kinds = r.choices("kinds", {c.packing.kind}, {"discs", "clusters", "hexagonal"});
+    if (e == "biaxial" || e == "repose")
+        k.mu_values = r.numbers("mu_values", {c.material.mu}, closed(0.0, 10.0), kMaxValues);
+    if (e == "biaxial") {
+        const double r_max = c.packing.r_max;
+        k.width = r.number("width", k.width, positive());
+        if (k.width < 8.0 * r_max) r.refuse("width", fmt::format("must be at least 8 r_max = {:g} m", 8.0 * r_max));
+        k.height = r.number("height", k.height, positive());
+        if (k.height < 8.0 * r_max)
+            r.refuse("height", fmt::format("must be at least 8 r_max = {:g} m", 8.0 * r_max));
+        k.confining_stress = r.number("confining_stress", k.confining_stress, positive());
+        k.max_inertial_number = r.number("max_inertial_number", k.max_inertial_number, {0.0, 0.1, true, false});
+        // I = ε̇ d sqrt(ρ/σ_3) with the mean disc diameter d = r_min + r_max.
+        const double t_i = (c.packing.r_min + r_max) * std::sqrt(c.material.density / k.confining_stress);
+        k.strain_rate = r.number("strain_rate", k.strain_rate, non_negative());
+        if (k.strain_rate == 0.0) {
+            k.strain_rate = k.max_inertial_number / t_i;
+            o->insert_or_assign("strain_rate", k.strain_rate);
+        } else if (k.strain_rate * t_i > k.max_inertial_number) {
+            r.refuse("strain_rate",
+                     fmt::format("gives the inertial number I = ε̇ d sqrt(ρ/σ_3) = {:.3g}, above "
+                                 "calibrate.max_inertial_number = {:g} (not quasi-static); use at most {:.4g} 1/s",
+                                 k.strain_rate * t_i, k.max_inertial_number, k.max_inertial_number / t_i));
+        }
+        k.max_strain = r.number("max_strain", k.max_strain, {0.0, 0.5, true, false});
+        k.critical_from = r.number("critical_from", k.critical_from, {0.0, k.max_strain, false, true});
+        k.output_strain = r.number("output_strain", k.output_strain, {0.0, 0.1, true, false});
+        if (k.output_strain > 0.25 * (k.max_strain - k.critical_from))
+            r.refuse("output_strain",
+                     fmt::format("must be at most a quarter of the critical-state window max_strain - critical_from "
+                                 "= {:g} (at least four rows to average)",
+                                 k.max_strain - k.critical_from));
+        k.servo_gain = r.number("servo_gain", k.servo_gain, {0.0, 1.0, true, false});
+        k.servo_tolerance = r.number("servo_tolerance", k.servo_tolerance, {0.0, 0.5, true, false});
+    } else if (e == "basal-friction") {
+        k.mu_bp_values = r.numbers("mu_bp_values", {0.3}, closed(0.0, 10.0), kMaxValues);
+        k.block_length = r.number("block_length", k.block_length, positive());
+        if (k.block_length < 8.0 * c.packing.r_max)
+            r.refuse("block_length", fmt::format("must be at least 8 r_max = {:g} m", 8.0 * c.packing.r_max));
+        k.block_height = r.number("block_height", k.block_height, positive());
+        if (k.block_height < 4.0 * c.packing.r_max)
+            r.refuse("block_height", fmt::format("must be at least 4 r_max = {:g} m", 4.0 * c.packing.r_max));
+        k.belt_speed = r.number("belt_speed", k.belt_speed, positive());
+        k.traction_gain = r.number("traction_gain", k.traction_gain, {0.0, 1.5, true, false});
+        k.duration = r.number("duration", k.duration, positive());
+        k.measure_from = r.number("measure_from", k.measure_from, {0.0, 1.0, false, true});
+    } else {  // repose
+        k.column_width = r.number("column_width", k.column_width, positive());
+        if (k.column_width < 4.0 * c.packing.r_max)
+            r.refuse("column_width", fmt::format("must be at least 4 r_max = {:g} m", 4.0 * c.packing.r_max));
+        k.column_height = r.number("column_height", k.column_height, positive());
+        if (k.column_height < 8.0 * c.packing.r_max)
+            r.refuse("column_height", fmt::format("must be at least 8 r_max = {:g} m", 8.0 * c.packing.r_max));
+        k.lift_speed = r.number("lift_speed", k.lift_speed, positive());
+        k.fit_from = r.number("fit_from", k.fit_from, {0.0, 1.0, false, true});
+        k.fit_to = r.number("fit_to", k.fit_to, {0.0, 1.0, true, false});
+        if (k.fit_to <= k.fit_from)
+            r.refuse("fit_to", fmt::format("must be above calibrate.fit_from = {:g}", k.fit_from));
+    }
+    r.finish();
+}
+
 Config read(const toml::table& root, const std::string& file) {
     Config c;
     toml::table& out = c.resolved;
@@ -312,9 +439,9 @@ Config read(const toml::table& root, const std::string& file) {
 
     // Top level: only known sections.
     for (auto&& [k, v] : root) {
-        static const std::set<std::string> known = {"run", "wedge", "material", "packing", "numerics"};
+        static const std::set<std::string> known = {"run", "wedge", "material", "packing", "numerics", "calibrate"};
         if (!known.count(std::string(k.str())))
-            throw ConfigError(fmt::format("{}: unknown key '{}' = {}; allowed top-level tables: run, wedge, material, packing, numerics",
+            throw ConfigError(fmt::format("{}: unknown key '{}' = {}; allowed top-level tables: run, wedge, material, packing, numerics, calibrate",
                                           where(file, k.source()), k.str(), show(v)));
     }
 
@@ -322,7 +449,9 @@ Config read(const toml::table& root, const std::string& file) {
         auto [in, o] = section("run");
         Reader r(in, "run.", file, *o, none);
         c.run.experiment = r.choice("experiment", c.run.experiment,
-                                    {"settle", "critical-wedge", "exp1", "exp2", "exp3"}, true);
+                                    {"settle", "critical-wedge", "exp1", "exp2", "exp3", "biaxial", "basal-friction",
+                                     "repose"},
+                                    true);
         c.run.seed = static_cast<std::uint64_t>(r.integer("seed", static_cast<std::int64_t>(c.run.seed), 0, std::numeric_limits<std::int64_t>::max()));
         c.run.threads = static_cast<int>(r.integer("threads", c.run.threads, 0, 1024));
         c.run.output_interval = r.number("output_interval", c.run.output_interval, positive());
@@ -399,10 +528,14 @@ Config read(const toml::table& root, const std::string& file) {
         p.r_max = r.number("r_max", p.r_max, positive());
         if (p.r_max < p.r_min)
             r.refuse("r_max", fmt::format("must be >= packing.r_min = {:g}", p.r_min));
-        p.h0 = r.number("h0", p.h0, positive());
-        if (p.h0 < 4.0 * p.r_max)
-            r.refuse("h0", fmt::format("must be at least 4 r_max = {:g} m (two disc layers)", 4.0 * p.r_max));
-        if (is_wedge(c)) {
+        if (!is_calibration(c)) {  // the calibrations size their samples in [calibrate]
+            p.h0 = r.number("h0", p.h0, positive());
+            if (p.h0 < 4.0 * p.r_max)
+                r.refuse("h0", fmt::format("must be at least 4 r_max = {:g} m (two disc layers)", 4.0 * p.r_max));
+        }
+        if (is_calibration(c)) {
+            // no layer: packing.h0 and packing.length are not read (unknown keys)
+        } else if (is_wedge(c)) {
             // Incoming plate long enough to reach s_max, plus the retroside cover.
             const WedgeConfig& w = c.wedge;
             const double retro = c.run.experiment == "critical-wedge" ? 0.0 : w.retro_length;
@@ -417,7 +550,7 @@ Config read(const toml::table& root, const std::string& file) {
         } else {
             p.length = r.number("length", p.length, positive());
         }
-        if (p.length < 8.0 * p.r_max)
+        if (!is_calibration(c) && p.length < 8.0 * p.r_max)
             r.refuse("length", fmt::format("must be at least 8 r_max = {:g} m", 8.0 * p.r_max));
         const std::int64_t seed = r.integer("seed", 0, 0, std::numeric_limits<std::int64_t>::max());
         p.seed = seed == 0 ? c.run.seed : static_cast<std::uint64_t>(seed);
@@ -441,6 +574,12 @@ Config read(const toml::table& root, const std::string& file) {
         n.gravity = r.number("gravity", n.gravity, non_negative());
         r.finish();
     }
+    if (is_calibration(c)) read_calibrate(c, section, file);
+    else if (const toml::node* n = root.get("calibrate"))
+        throw ConfigError(fmt::format("{}: table [calibrate] is only read by the calibration experiments, not "
+                                      "run.experiment = \"{}\"; remove it or set run.experiment to biaxial, "
+                                      "basal-friction or repose (orodem calibrate)",
+                                      where(file, n->source()), c.run.experiment));
     if (is_wedge(c) && c.wedge.column_width == 0.0) {
         c.wedge.column_width = 2.0 * c.packing.r_max;
         out.get("wedge")->as_table()->insert_or_assign("column_width", c.wedge.column_width);
@@ -482,6 +621,11 @@ Config load_config(const std::string& path, const std::vector<Override>& overrid
 namespace {
 /// TOML text of one scalar; doubles in the shortest form that reads back exactly.
 std::string scalar_text(const toml::node& n) {
+    if (auto a = n.as_array()) {  // [calibrate] lists: each element in the same form
+        std::string t = "[";
+        for (std::size_t k = 0; k < a->size(); ++k) t += (k ? ", " : "") + scalar_text(*a->get(k));
+        return t + "]";
+    }
     if (auto f = n.as_floating_point()) {
         std::string t = fmt::format("{}", f->get());
         if (t.find_first_of(".eEn") == std::string::npos) t += ".0";

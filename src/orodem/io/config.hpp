@@ -17,6 +17,7 @@ namespace orodem {
 
 struct RunConfig {
     std::string experiment = "settle";  // required: settle | critical-wedge | exp1 | exp2 | exp3
+                                        // | biaxial | basal-friction | repose (orodem calibrate)
     std::uint64_t seed = 1;             // master seed; packing.seed defaults to it [-]
     int threads = 0;                    // OpenMP threads, 0 = all cores [-]
     double output_interval = 0.05;      // settle: simulated time between series rows [s]
@@ -74,6 +75,38 @@ struct PackingConfig {
     std::string cache_dir = "";       // settled packings are reused from here; "" = $XDG_CACHE_HOME/orodem or ~/.cache/orodem
 };
 
+/// The calibration experiments (orodem calibrate; docs/validation.md): each
+/// runs once per packing kind and per value of its swept coefficient.
+struct CalibrateConfig {
+    std::vector<std::string> kinds;        // packing kinds to test; default {packing.kind}
+    std::vector<double> mu_values;         // biaxial, repose: μ_i values [-]; default {material.mu}
+    std::vector<double> mu_bp_values;      // basal-friction: μ_bp values [-]; default {0.3}
+    // biaxial: gravity-free sample in a box of four smooth walls
+    double width = 30.0;                   // sample width after compaction, about [m]
+    double height = 60.0;                  // sample height after compaction, about [m]
+    double confining_stress = 2.0e5;       // σ_3 held by the side walls (and the compaction stress) [Pa]
+    double strain_rate = 0.0;              // axial strain rate ε̇ [1/s]; 0 = the rate giving max_inertial_number
+    double max_inertial_number = 1.0e-3;   // largest I = ε̇ d sqrt(ρ/σ_3) allowed (d = r_min + r_max) [-]
+    double max_strain = 0.2;               // axial strain at the end of the test [-]
+    double critical_from = 0.15;           // critical state: mean over axial strain in [critical_from, max_strain] [-]
+    double output_strain = 0.0025;         // axial strain between rows of the series [-]
+    double servo_gain = 0.5;               // α: fraction of a wall's stress error corrected per step [-]
+    double servo_tolerance = 0.01;         // compaction ends when both servo stresses are within this relative error [-]
+    // basal-friction: a block held by a fixed wall on the conveyor base
+    double block_length = 20.0;            // block length along the base [m]
+    double block_height = 10.0;            // block thickness [m]
+    double belt_speed = 0.1;               // belt speed v' [m/s] (eq. 6 checked)
+    double traction_gain = 1.0;            // g_b in the eq. 5 traction γ_b = g_b m_i / dt [-]
+    double duration = 10.0;                // belt running time [s]
+    double measure_from = 0.5;             // the measurement averages over t in [measure_from · duration, duration] [-]
+    // repose: a column released by lifting its side walls onto a floor of fixed discs
+    double column_width = 20.0;            // column width [m]
+    double column_height = 60.0;           // column height [m]
+    double lift_speed = 2.0;               // side walls rise at this speed [m/s]
+    double fit_from = 0.15;                // flanks fitted between these fractions of the heap height [-]
+    double fit_to = 0.85;                  // (excludes the toe and the top) [-]
+};
+
 struct NumericsConfig {
     double dt = 0.0;                  // timestep [s]; 0 = safety · sqrt(m_min / k_max)
     double safety = 0.1;              // dt / sqrt(m_min / k_max) when automatic [-]
@@ -88,11 +121,16 @@ struct Config {
     MaterialConfig material;
     PackingConfig packing;
     NumericsConfig numerics;
+    CalibrateConfig calibrate;        // calibration experiments only
     toml::table resolved;             // every key with its final value
 };
 
-/// True for the wedge experiments (everything but "settle").
-inline bool is_wedge(const Config& c) { return c.run.experiment != "settle"; }
+/// True for the calibration experiments (orodem calibrate): biaxial, basal-friction, repose.
+inline bool is_calibration(const Config& c) {
+    return c.run.experiment == "biaxial" || c.run.experiment == "basal-friction" || c.run.experiment == "repose";
+}
+/// True for the wedge experiments (everything but "settle" and the calibrations).
+inline bool is_wedge(const Config& c) { return c.run.experiment != "settle" && !is_calibration(c); }
 
 /// One `--set key=value` override; value is TOML syntax (1.5, true, "clusters").
 using Override = std::pair<std::string, std::string>;

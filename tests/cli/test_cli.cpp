@@ -257,3 +257,16 @@ TEST_F(Cli, CoarseTimestepRunsWithAWarning) {
     ASSERT_EQ(fine.status, 0) << fine.err;
     EXPECT_EQ(fine.err.find("warning"), std::string::npos) << fine.err;
 }
+
+TEST_F(Cli, EveryShippedConfigPassesCheck) {
+    // configs/ (paper size), configs/demo/, configs/mid/, configs/calibrate/:
+    // a schema change that breaks a shipped config fails here, not at a user.
+    int checked = 0;
+    for (const auto& e : fs::recursive_directory_iterator(fs::path(ORODEM_SOURCE_DIR) / "configs")) {
+        if (e.path().extension() != ".toml") continue;
+        const Result r = orodem("check " + quote(e.path().string()));
+        EXPECT_EQ(r.status, 0) << e.path() << ": " << r.err;
+        ++checked;
+    }
+    EXPECT_GE(checked, 14);
+}

@@ -1,5 +1,7 @@
 #include "orodem/render/calibration_plots.hpp"
 
+#include "orodem/render/plot_util.hpp"
+
 #include <cairo.h>
 
 #include <algorithm>
@@ -16,55 +18,17 @@ namespace orodem {
 
 namespace {
 
-struct Rgb {
-    double r, g, b;
-};
-constexpr Rgb kPalette[] = {{0.12, 0.47, 0.71}, {0.89, 0.10, 0.11}, {0.20, 0.63, 0.17}, {1.00, 0.50, 0.00},
-                            {0.42, 0.24, 0.60}, {0.65, 0.34, 0.16}, {0.91, 0.16, 0.54}, {0.40, 0.40, 0.40},
-                            {0.74, 0.74, 0.13}, {0.09, 0.75, 0.81}};
-Rgb color(int i) {
-    const int n = static_cast<int>(std::size(kPalette));
-    return kPalette[((i % n) + n) % n];
-}
+using plot::Rgb;
+using plot::append_bytes;
+using plot::text_at;
+using plot::tick_label;
+using Axis = plot::Range;
+
+Rgb color(int i) { return plot::palette(static_cast<std::size_t>(i < 0 ? 0 : i)); }
 
 constexpr double kFont = 14, kOuter = 16, kLeft = 78, kRight = 18, kTop = 34, kBottom = 52, kLegendRow = 24;
 
-struct Axis {
-    double lo = 0, hi = 1, step = 0.2;
-};
-
-double nice_step(double span, int target) {
-    const double raw = span / target;
-    const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-    const double f = raw / mag;
-    return (f < 1.5 ? 1.0 : f < 3.0 ? 2.0 : f < 7.0 ? 5.0 : 10.0) * mag;
-}
-
-Axis axis_for(double lo, double hi, int target) {
-    if (!(lo <= hi)) lo = 0, hi = 1;
-    if (hi - lo < 1e-12 * std::max(1.0, std::fabs(hi))) {
-        const double pad = lo == 0.0 ? 1.0 : 0.1 * std::fabs(lo);
-        lo -= pad;
-        hi += pad;
-    }
-    Axis a;
-    a.step = nice_step(hi - lo, target);
-    a.lo = std::floor(lo / a.step + 1e-3) * a.step;
-    a.hi = std::ceil(hi / a.step - 1e-3) * a.step;
-    return a;
-}
-
-void text_at(cairo_t* cr, const std::string& s, double x, double y, double ax, double ay) {
-    cairo_text_extents_t e;
-    cairo_text_extents(cr, s.c_str(), &e);
-    cairo_move_to(cr, x - ax * e.x_advance, y + ay * e.height);
-    cairo_show_text(cr, s.c_str());
-}
-
-std::string tick_label(double t, double step) {
-    if (std::fabs(t) < 1e-9 * step) t = 0.0;
-    return fmt::format("{:g}", t);
-}
+Axis axis_for(double lo, double hi, int target) { return plot::axis_range(lo, hi, target); }
 
 /// Frame, grid, ticks and labels of a plot area; returns nothing, draws axes.
 void draw_axes(cairo_t* cr, const Axis& xa, const Axis& ya, double x0, double y0, double w, double h,
@@ -172,10 +136,6 @@ void draw_panel(cairo_t* cr, const PlotPanel& p, double x0, double y0, double w,
     cairo_restore(cr);
 }
 
-cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length) {
-    static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
-    return CAIRO_STATUS_SUCCESS;
-}
 
 struct LegendEntry {
     std::string label;

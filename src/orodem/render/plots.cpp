@@ -1,5 +1,7 @@
 #include "orodem/render/plots.hpp"
 
+#include "orodem/render/plot_util.hpp"
+
 #include <cairo-pdf.h>
 #include <cairo-svg.h>
 #include <cairo.h>
@@ -21,48 +23,18 @@ const std::vector<std::string> kPlotColumns = {"S", "alpha_deg", "beta_deg", "H_
 
 namespace {
 
-struct Rgb {
-    double r, g, b;
-};
+using plot::Range;
+using plot::Rgb;
+using plot::append_bytes;
+using plot::axis_range;
+using plot::text_at;
+using plot::tick_label;
 
-// Ten well-separated line colours, cycled when there are more runs.
-constexpr Rgb kPalette[] = {{0.12, 0.47, 0.71}, {0.89, 0.10, 0.11}, {0.20, 0.63, 0.17}, {1.00, 0.50, 0.00},
-                            {0.42, 0.24, 0.60}, {0.65, 0.34, 0.16}, {0.91, 0.16, 0.54}, {0.40, 0.40, 0.40},
-                            {0.74, 0.74, 0.13}, {0.09, 0.75, 0.81}};
-
-Rgb run_color(std::size_t i) { return kPalette[i % std::size(kPalette)]; }
+Rgb run_color(std::size_t i) { return plot::palette(i); }
 
 // Layout [px].
 constexpr double kOuter = 16, kPanelLeft = 78, kPanelRight = 18, kPanelTop = 34, kPanelBottom = 52;
 constexpr double kTitleHeight = 34, kLegendRow = 24, kFont = 14;
-
-struct Range {
-    double lo = 0, hi = 1, step = 0.2;
-};
-
-/// A "nice" tick step (1, 2 or 5 × 10^k) giving about `target` intervals.
-double nice_step(double span, int target) {
-    const double raw = span / target;
-    const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-    const double f = raw / mag;
-    return (f < 1.5 ? 1.0 : f < 3.0 ? 2.0 : f < 7.0 ? 5.0 : 10.0) * mag;
-}
-
-/// Axis range covering [lo, hi] (finite, or none: lo > hi), on tick multiples.
-Range axis_range(double lo, double hi, int target) {
-    if (!(lo <= hi)) lo = 0, hi = 1;
-    if (hi - lo < 1e-12 * std::max(1.0, std::fabs(hi))) {
-        const double pad = lo == 0.0 ? 1.0 : 0.1 * std::fabs(lo);
-        lo -= pad;
-        hi += pad;
-    }
-    Range r;
-    r.step = nice_step(hi - lo, target);
-    // Data within a thousandth of a step past a tick (S = 1.000001) stays on that tick.
-    r.lo = std::floor(lo / r.step + 1e-3) * r.step;
-    r.hi = std::ceil(hi / r.step - 1e-3) * r.step;
-    return r;
-}
 
 struct Curve {
     const std::vector<double>* x;
@@ -76,18 +48,6 @@ struct Panel {
     std::vector<Curve> curves;
     bool taper_key = false;  // draw the "α solid, β dashed" key
 };
-
-void text_at(cairo_t* cr, const std::string& s, double x, double y, double ax, double ay) {
-    cairo_text_extents_t e;
-    cairo_text_extents(cr, s.c_str(), &e);
-    cairo_move_to(cr, x - ax * e.x_advance, y + ay * e.height);
-    cairo_show_text(cr, s.c_str());
-}
-
-std::string tick_label(double t, double step) {
-    if (std::fabs(t) < 1e-9 * step) t = 0.0;
-    return fmt::format("{:g}", t);
-}
 
 void draw_panel(cairo_t* cr, const Panel& p, const Range& xr, double x0, double y0, double w, double h) {
     // Data range over every finite point.
@@ -222,11 +182,6 @@ void draw_panel(cairo_t* cr, const Panel& p, const Range& xr, double x0, double 
         cairo_set_dash(cr, nullptr, 0, 0.0);
         text_at(cr, "β", kx + 105, ky, 0.0, 0.35);
     }
-}
-
-cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length) {
-    static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
-    return CAIRO_STATUS_SUCCESS;
 }
 
 std::string extension(const std::string& path) {

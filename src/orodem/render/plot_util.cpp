@@ -1,0 +1,60 @@
+#include "orodem/render/plot_util.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include <fmt/format.h>
+
+namespace orodem::plot {
+
+namespace {
+
+constexpr Rgb kPalette[] = {{0.12, 0.47, 0.71}, {0.89, 0.10, 0.11}, {0.20, 0.63, 0.17}, {1.00, 0.50, 0.00},
+                            {0.42, 0.24, 0.60}, {0.65, 0.34, 0.16}, {0.91, 0.16, 0.54}, {0.40, 0.40, 0.40},
+                            {0.74, 0.74, 0.13}, {0.09, 0.75, 0.81}};
+
+}  // namespace
+
+Rgb palette(std::size_t i) { return kPalette[i % std::size(kPalette)]; }
+
+double nice_step(double span, int target) {
+    const double raw = span / target;
+    const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+    const double f = raw / mag;
+    return (f < 1.5 ? 1.0 : f < 3.0 ? 2.0 : f < 7.0 ? 5.0 : 10.0) * mag;
+}
+
+Range axis_range(double lo, double hi, int target) {
+    if (!(lo <= hi)) lo = 0, hi = 1;
+    if (hi - lo < 1e-12 * std::max(1.0, std::fabs(hi))) {
+        const double pad = lo == 0.0 ? 1.0 : 0.1 * std::fabs(lo);
+        lo -= pad;
+        hi += pad;
+    }
+    Range r;
+    r.step = nice_step(hi - lo, target);
+    // Data within a thousandth of a step past a tick (S = 1.000001) stays on that tick.
+    r.lo = std::floor(lo / r.step + 1e-3) * r.step;
+    r.hi = std::ceil(hi / r.step - 1e-3) * r.step;
+    return r;
+}
+
+void text_at(cairo_t* cr, const std::string& s, double x, double y, double ax, double ay) {
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, s.c_str(), &e);
+    cairo_move_to(cr, x - ax * e.x_advance, y + ay * e.height);
+    cairo_show_text(cr, s.c_str());
+}
+
+std::string tick_label(double t, double step) {
+    if (std::fabs(t) < 1e-9 * step) t = 0.0;
+    return fmt::format("{:g}", t);
+}
+
+cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length) {
+    static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+    return CAIRO_STATUS_SUCCESS;
+}
+
+}  // namespace orodem::plot

@@ -177,15 +177,16 @@ ParticleStore prepare_layer(const Config& c, const std::string& dir, LineFile& l
         fmt::print("packing reused from {}\n", cache);
         return std::move(*cached);
     }
+    // Settling is not checkpointed (it ends in the packing cache, and takes
+    // minutes at most): a signal ends it with exit 128 + signal and a rerun
+    // (for a wedge: --resume) settles again. The handler is in place before
+    // the log says "settling".
+    StopSignals signals;
     log.line(fmt::format("settling a new packing ({})", why));
     Simulation sim = make_settle_simulation(c);
     sim.initialize();
     log.line(fmt::format("generated {} discs ({}); settling", sim.particles.size(), c.packing.kind));
     Progress progress;
-    // Settling is not checkpointed (it ends in the packing cache, and takes
-    // minutes at most): a signal ends it with exit 128 + signal and a rerun
-    // (for a wedge: --resume) settles again.
-    StopSignals signals;
     const SettleProgress done = settle(sim, c.packing, c.run.output_interval, [&](const SettleProgress& s) {
         if (const int sig = signals.pending()) {
             const std::string msg = fmt::format(
@@ -517,6 +518,22 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
                        sig_name, sim.step_count, S, path, dir, dir);
             return 128 + sig;
         }
+        if (c.run.max_wall_minutes > 0.0 && progress.elapsed() >= 60.0 * c.run.max_wall_minutes &&
+            sim.step_count < total_steps) {
+            // A batch job's time limit (RELIABILITY-CHECKLIST 10): stop cleanly, resumable.
+            if (sim.step_count != next_output) check();
+            const std::string path = save_checkpoint(state_bytes());
+            const double S = c.wedge.v * sim.time / h0;
+            log.line(fmt::format("stopped at the wall-time limit run.max_wall_minutes = {:g} at step {} (S = {:.4f}); "
+                                 "checkpoint {}",
+                                 c.run.max_wall_minutes, sim.step_count, S, path));
+            progress.done();
+            fmt::print(stderr,
+                       "orodem: stopped at the wall-time limit run.max_wall_minutes = {:g} at step {} (S = {:.4f}); "
+                       "checkpoint written to {}\ncontinue with: orodem run {}/config.toml --out {} --resume\n",
+                       c.run.max_wall_minutes, sim.step_count, S, path, dir, dir);
+            return static_cast<int>(ExitCode::time_limit);
+        }
         if (checkpoint_secs > 0.0 && sim.step_count != next_output &&
             std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint_time).count() >=
                 checkpoint_secs) {
@@ -544,7 +561,7 @@ int start_wedge(const Config& c, const std::string& dir, LineFile& log) {
 }
 
 /// The first line where the resolved configs differ, ignoring the keys that
-/// do not change results (run.threads, run.checkpoint_minutes); "" if none.
+/// do not change results (run.threads, run.checkpoint_minutes, run.max_wall_minutes); "" if none.
 std::string first_config_difference(const Config& a, const Config& b) {
     auto lines = [](const Config& c) {
         std::vector<std::string> out;
@@ -552,7 +569,9 @@ std::string first_config_difference(const Config& a, const Config& b) {
         std::string section, l;
         while (std::getline(in, l)) {
             if (!l.empty() && l[0] == '[') section = l;
-            if (l.rfind("threads =", 0) == 0 || l.rfind("checkpoint_minutes =", 0) == 0) continue;
+            if (l.rfind("threads =", 0) == 0 || l.rfind("checkpoint_minutes =", 0) == 0 ||
+                l.rfind("max_wall_minutes =", 0) == 0)
+                continue;
             out.push_back(section + " " + l);
         }
         return out;

@@ -302,3 +302,24 @@ TEST_F(Resume, ASignalWhileSettlingExitsCleanlyAndResumeStartsAgain) {
     EXPECT_NE(slurp(r.out).find("has no checkpoint yet: starting the run from the beginning"), std::string::npos);
     EXPECT_EQ(count_lines(slurp(run / "series.csv")), count_lines(slurp(reference_ / "series.csv")));
 }
+
+TEST_F(Resume, AWallTimeLimitStopsWithExit5AndResumeFinishesTheSameRun) {
+    // A limit of 3 ms of wall time: the run stops at the first look after it.
+    const fs::path run = root_ / "M";
+    const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1", "--set",
+                          "run.max_wall_minutes=0.00005"},
+                         root_ / "M");
+    ASSERT_EQ(wait_for(p), 5) << slurp(p.err);
+    const std::string err = slurp(p.err);
+    EXPECT_NE(err.find("stopped at the wall-time limit run.max_wall_minutes = 5e-05"), std::string::npos) << err;
+    const std::string cmd = std::string("continue with: orodem run ") + run.string() + "/config.toml --out " +
+                            run.string() + " --resume";
+    EXPECT_NE(err.find(cmd), std::string::npos) << err;
+    ASSERT_LT(slurp(run / "series.csv").size(), slurp(reference_ / "series.csv").size()) << "was not stopped";
+    // The limit does not enter the config hash: resume without it.
+    const Proc r = start({"run", run.string() + "/config.toml", "--out", run.string(), "--resume", "--threads", "1",
+                          "--set", "run.max_wall_minutes=0"},
+                         root_ / "M-resume");
+    ASSERT_EQ(wait_for(r), 0) << slurp(r.err);
+    expect_same_outputs(reference_, run);
+}

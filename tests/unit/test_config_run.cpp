@@ -33,6 +33,7 @@ TEST(ConfigRun, DefaultsResolve) {
     const Config c = parse_config(kWedge, "run.toml", {});
     EXPECT_EQ(c.run.checkpoint_every_outputs, 1);
     EXPECT_DOUBLE_EQ(c.run.checkpoint_minutes, 10.0);
+    EXPECT_DOUBLE_EQ(c.run.max_wall_minutes, 0.0);
     EXPECT_DOUBLE_EQ(c.run.max_overlap_ratio, 0.5);
     EXPECT_DOUBLE_EQ(c.run.warn_overlap_ratio, 0.1);
     EXPECT_FALSE(c.run.allow_initial_overlap);
@@ -53,6 +54,7 @@ TEST(ConfigRun, EveryBadValueIsRefusedNamingKeyAndAllowedRange) {
         {"checkpoint_every_outputs = 0", "run.checkpoint_every_outputs", "[1, 1000000]"},
         {"checkpoint_every_outputs = 1.5", "run.checkpoint_every_outputs", "integer"},
         {"checkpoint_minutes = -1", "run.checkpoint_minutes", ">= 0"},
+        {"max_wall_minutes = -1", "run.max_wall_minutes", ">= 0"},
         {"max_overlap_ratio = 0", "run.max_overlap_ratio", "(0, 1]"},
         {"max_overlap_ratio = 1.5", "run.max_overlap_ratio", "(0, 1]"},
         {"warn_overlap_ratio = 0", "run.warn_overlap_ratio", "(0, 1]"},

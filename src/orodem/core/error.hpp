@@ -13,6 +13,7 @@ enum class ExitCode : int {
     config = 2,        // bad config or command line: nothing was run or written
     unstable = 3,      // the simulation blew up (NaN, overlap, speed, lost particle)
     io = 4,            // a file could not be read or written
+    time_limit = 5,    // stopped at run.max_wall_minutes with a checkpoint; --resume continues
     interrupted = 130  // SIGINT (SIGTERM gives 143)
 };
 

@@ -166,6 +166,7 @@ std::uint64_t config_hash(const Config& c) {
     if (toml::table* run = n.resolved["run"].as_table()) {
         if (run->contains("threads")) run->insert_or_assign("threads", std::int64_t{0});
         if (run->contains("checkpoint_minutes")) run->insert_or_assign("checkpoint_minutes", 0.0);
+        if (run->contains("max_wall_minutes")) run->insert_or_assign("max_wall_minutes", 0.0);
     }
     return fnv(to_toml(n));
 }

@@ -459,6 +459,7 @@ Config read(const toml::table& root, const std::string& file) {
             c.run.checkpoint_every_outputs = static_cast<int>(
                 r.integer("checkpoint_every_outputs", c.run.checkpoint_every_outputs, 1, 1000000));
             c.run.checkpoint_minutes = r.number("checkpoint_minutes", c.run.checkpoint_minutes, non_negative());
+            c.run.max_wall_minutes = r.number("max_wall_minutes", c.run.max_wall_minutes, non_negative());
             c.run.max_overlap_ratio = r.number("max_overlap_ratio", c.run.max_overlap_ratio, {0.0, 1.0, true, false});
             c.run.warn_overlap_ratio = r.number("warn_overlap_ratio", c.run.warn_overlap_ratio, {0.0, 1.0, true, false});
             if (c.run.warn_overlap_ratio > c.run.max_overlap_ratio)

@@ -23,6 +23,8 @@ struct RunConfig {
     double output_interval = 0.05;      // settle: simulated time between series rows [s]
     int checkpoint_every_outputs = 1;   // wedge: a checkpoint every this many outputs [-]
     double checkpoint_minutes = 10.0;   // wedge: and after this much wall time, checked every 100 steps; 0 = off [min]
+    double max_wall_minutes = 0.0;      // wedge: stop with a checkpoint (exit 5) after this much wall time in one
+                                        // invocation, as a batch job's time limit asks; 0 = no limit [min]
     double max_overlap_ratio = 0.5;     // wedge: stop (exit 3) when an overlap exceeds this fraction of the smaller radius [-]
     double warn_overlap_ratio = 0.1;    // wedge: log a warning when the largest overlap exceeds this fraction [-] (demo runs peak near 0.07)
     bool allow_initial_overlap = false; // wedge: start even when the initial layer has an overlap above max_overlap_ratio

@@ -97,6 +97,20 @@ std::pair<std::size_t, std::size_t> thread_range(std::size_t n, std::size_t alig
     return {std::min(n, align * (chunks * tid / nth)), std::min(n, align * (chunks * (tid + 1) / nth))};
 }
 
+/// Inside a parallel region, called by every thread: phase A over this
+/// thread's share of the pairs, a barrier, the master's clock read for the
+/// phase timers, then phase B over its share of the discs.
+void pairs_then_gather(const PairKernelData& kd, const GatherData& gd, std::size_t npairs, std::size_t n,
+                       double& t_pairs_done) {
+    const auto [pb, pe] = thread_range(npairs, 64);
+    if (pb < pe) eval_pair_range(kd, pb, pe);
+#pragma omp barrier
+#pragma omp master
+    t_pairs_done = omp_get_wtime();
+    const auto [b, e] = thread_range(n, 8);
+    if (b < e) gather_range(gd, b, e);
+}
+
 }  // namespace
 
 PairKernelData Simulation::pair_kernel_data(bool update_history) {
@@ -160,15 +174,7 @@ void Simulation::pair_forces_gather_kick() {
     const std::size_t npairs = contacts.size(), n = particles.size();
     double t_pairs_done = 0.0;
 #pragma omp parallel if(static_cast<long long>(n) >= kParallelMin)
-    {
-        const auto [pb, pe] = thread_range(npairs, 64);
-        if (pb < pe) eval_pair_range(kd, pb, pe);
-#pragma omp barrier
-#pragma omp master
-        t_pairs_done = omp_get_wtime();
-        const auto [b, e] = thread_range(n, 8);
-        if (b < e) gather_range(gd, b, e);
-    }
+    pairs_then_gather(kd, gd, npairs, n, t_pairs_done);
     pairs_done_at_ = t_pairs_done;
 }
 
@@ -240,15 +246,7 @@ bool Simulation::step_in_one_region(double wall_move) {
             t_kicked = omp_get_wtime();
             rebuild = need;
         }
-        if (!need) {
-            const auto [pb, pe] = thread_range(npairs, 64);
-            if (pb < pe) eval_pair_range(kd, pb, pe);
-#pragma omp barrier
-#pragma omp master
-            t_pairs_done = omp_get_wtime();
-            const auto [b, e] = thread_range(n, 8);
-            if (b < e) gather_range(gd, b, e);
-        }
+        if (!need) pairs_then_gather(kd, gd, npairs, n, t_pairs_done);
     }
     max_disp2_ = max_d2;
     kicked_at_ = t_kicked;

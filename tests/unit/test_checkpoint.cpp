@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -297,6 +298,30 @@ TEST(Health, FindsNonFiniteOverlapSpeedAndEscapedDiscs) {
     ASSERT_TRUE(p.has_value());
     EXPECT_EQ(p->what, "overlap");
     EXPECT_NE(p->detail.find("run.max_overlap_ratio"), std::string::npos) << p->detail;
+}
+
+TEST(Checkpoint, TheConfigHashIgnoresKeysAtTheirDefaultsSoANewerVersionResumes) {
+    // A run directory's config.toml written by an older orodem lacks the keys
+    // added since; they take their defaults and must not change the hash.
+    const Config& c = fixture().c;
+    const std::string full = to_toml(c);
+    std::string older;
+    std::istringstream lines(full);
+    int dropped = 0;
+    for (std::string line; std::getline(lines, line);) {
+        const bool added_later = line.rfind("warn_overlap_ratio =", 0) == 0 || line.rfind("on_domain_exit =", 0) == 0 ||
+                                 line.rfind("sleep =", 0) == 0;
+        if (added_later) ++dropped; else older += line + "\n";
+    }
+    ASSERT_EQ(dropped, 3) << full;
+    const Config old = parse_config(older, "config.toml");
+    EXPECT_NE(older, full);  // the texts differ ...
+    EXPECT_EQ(config_hash(old), config_hash(c));  // ... the hashes do not
+    // A key set away from its default, even one the older file lacked, counts.
+    EXPECT_NE(config_hash(parse_config(older, "config.toml", {{"run.warn_overlap_ratio", "0.05"}})), config_hash(c));
+    EXPECT_NE(config_hash(parse_config(older, "config.toml", {{"wedge.sleep", "true"}})), config_hash(c));
+    // So does a value written out at a default that is not this version's one.
+    EXPECT_NE(config_hash(parse_config(full, "config.toml", {{"material.damping_normal", "0.6"}})), config_hash(c));
 }
 
 TEST(Checkpoint, AWedgeRunsResolvedConfigLoadsAgainWithTheSameHash) {

@@ -93,7 +93,9 @@ public:
     void initialize();
     /// Advances one timestep.
     void step();
-    void advance(std::uint64_t n) { for (std::uint64_t k = 0; k < n; ++k) step(); }
+    /// Advances n timesteps. Inside, the far sleeping discs drift lazily
+    /// (engine/sleep.cpp); every position is current again on return.
+    void advance(std::uint64_t n);
 
     /// Law parameters of wall w (its roughness and μ on top of params.law).
     LawParams wall_law(std::size_t w) const;
@@ -165,6 +167,16 @@ private:
     std::uint32_t awake_begin_ = 0, awake_end_ = 0;
     std::uint32_t pairs_begin_ = 0, pairs_end_ = 0;
     std::uint64_t last_rebuild_step_ = 0;
+    // Lazy drift (engine/sleep.cpp): inside advance(), only slots
+    // [drift_begin_, drift_end_) (the awake discs and every disc of an awake
+    // pair) drift each step; the others are sleeping or fixed discs moving at
+    // a constant velocity and catch up drift_lag_ steps at once, before a
+    // rebuild and when advance() returns.
+    std::uint32_t drift_begin_ = 0, drift_end_ = 0;
+    std::uint64_t drift_lag_ = 0;     // steps the discs outside the drift range are behind
+    bool defer_drift_ = false;        // set by advance() while it steps
+    void set_drift_range();           // from the awake and pair ranges
+    void catch_up_drift();            // x += lag dt v, θ += lag dt ω outside the drift range
     std::vector<std::vector<std::uint32_t>> wall_discs_;  // per wall: slots with a candidate contact
     void index_wall_discs();  // wall_discs_ from wall_contacts (after a rebuild or a restore)
     double kicked_at_ = 0.0;          // omp_get_wtime() when the drift ended (phase timers)

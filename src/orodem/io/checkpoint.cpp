@@ -66,6 +66,7 @@ struct SimulationAccess {
         s.pairs_end_ = v.pairs_end;
         s.last_rebuild_step_ = v.last_rebuild_step;
         s.index_wall_discs();
+        s.set_drift_range();  // checkpoints are written between advance() calls: no drift lag
     }
 };
 
@@ -168,7 +169,9 @@ std::uint64_t config_hash(const Config& c) {
         if (run->contains("checkpoint_minutes")) run->insert_or_assign("checkpoint_minutes", 0.0);
         if (run->contains("max_wall_minutes")) run->insert_or_assign("max_wall_minutes", 0.0);
     }
-    return fnv(to_toml(n));
+    // Defaults are left out so that a newer orodem, which adds keys with
+    // their defaults, still resumes the checkpoints of an older one.
+    return fnv(to_toml_without_defaults(n));
 }
 
 std::string encode_checkpoint(const Simulation& sim, const RunLoopState& run, std::uint64_t cfg_hash) {

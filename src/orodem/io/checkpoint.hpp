@@ -50,8 +50,10 @@ struct RunLoopState {
     double surface_y_mean = 0.0;                        // undeformed surface (measured on the layer) [m]
 };
 
-/// FNV-1a 64 of the resolved config text (to_toml) with run.threads set to 0:
-/// the thread count does not change results, so a run may resume at another.
+/// FNV-1a 64 of the resolved config without the keys at their defaults
+/// (to_toml_without_defaults) and without run.threads, run.checkpoint_minutes
+/// and run.max_wall_minutes: those do not change results, so a run may resume
+/// with others; and a newer orodem that adds keys still resumes the run.
 std::uint64_t config_hash(const Config& c);
 
 /// The checkpoint file bytes of sim and run.

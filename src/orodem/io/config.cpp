@@ -656,4 +656,33 @@ std::string to_toml(const Config& c) {
     return os.str();
 }
 
+namespace {
+/// Removes from t every scalar whose text equals the one at the same place in d.
+void drop_equal(toml::table& t, const toml::table& d) {
+    std::vector<std::string> same;
+    for (auto&& [k, v] : t) {
+        const toml::node* dv = d.get(k.str());
+        if (!dv) continue;
+        if (auto* sub = v.as_table()) {
+            if (dv->is_table()) drop_equal(*sub, *dv->as_table());
+        } else if (!dv->is_table() && scalar_text(v) == scalar_text(*dv)) {
+            same.emplace_back(k.str());
+        }
+    }
+    for (const auto& k : same) t.erase(k);
+}
+}  // namespace
+
+std::string to_toml_without_defaults(const Config& c) {
+    Config n;
+    n.resolved = c.resolved;
+    try {
+        const Config d = parse_config(fmt::format("[run]\nexperiment = \"{}\"\n", c.run.experiment), "defaults");
+        drop_equal(n.resolved, d.resolved);
+    } catch (const ConfigError&) {
+        // An experiment without a valid all-defaults config keeps every key.
+    }
+    return to_toml(n);
+}
+
 }  // namespace orodem

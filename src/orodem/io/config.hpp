@@ -150,4 +150,10 @@ Config parse_config(const std::string& text, const std::string& name,
 /// The resolved config as TOML text.
 std::string to_toml(const Config& c);
 
+/// The resolved config without the keys whose value is this version's default
+/// for the experiment (a config made only of `[run] experiment = ...`). Keys a
+/// later version adds, with their defaults, leave this text unchanged; a
+/// changed default or any value the user set changes it.
+std::string to_toml_without_defaults(const Config& c);
+
 }  // namespace orodem

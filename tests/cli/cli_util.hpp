@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -18,6 +19,10 @@
 #include <vector>
 
 extern char** environ;
+
+/// EXPECT that text contains needle, showing the text when it does not.
+#define EXPECT_HAS(text, needle) \
+    EXPECT_NE(std::string(text).find(needle), std::string::npos) << "missing \"" << (needle) << "\" in:\n" << (text)
 
 namespace cli {
 
@@ -113,6 +118,54 @@ inline void expect_same_outputs(const fs::path& a, const fs::path& b) {
         EXPECT_TRUE(slurp(b / "figures" / n) == slurp(a / "figures" / n)) << b / "figures" / n;
     }
     EXPECT_GT(pictures, 5);
+}
+
+/// What a run of the orodem binary printed and returned.
+struct Result {
+    int status = -1;  // exit status, or -1 when the process did not exit normally
+    std::string out, err;
+};
+
+/// A fixture with a fresh temporary folder per test (removed afterwards):
+/// work_, where orodem runs, and capture_, where its output is kept.
+class OrodemTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        std::string tmpl = (fs::temp_directory_path() / "orodem-test-XXXXXX").string();
+        ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
+        root_ = tmpl;
+        work_ = root_ / "work";
+        capture_ = root_ / "capture";
+        fs::create_directories(work_);
+        fs::create_directories(capture_);
+    }
+    void TearDown() override {
+        std::error_code ec;
+        if (!root_.empty()) fs::remove_all(root_, ec);
+    }
+
+    /// Runs `orodem ARGS` in work_ (ARGS already shell-quoted where needed);
+    /// stdout and stderr go to files outside work_.
+    Result orodem(const std::string& args) {
+        const fs::path out = capture_ / "stdout", err = capture_ / "stderr";
+        const std::string cmd = "cd " + quote(work_.string()) + " && " + quote(ORODEM_EXE) + " " + args + " >" +
+                                quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
+        const int raw = std::system(cmd.c_str());
+        Result r;
+        r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
+        r.out = slurp(out);
+        r.err = slurp(err);
+        return r;
+    }
+
+    fs::path root_, work_, capture_;
+};
+
+/// A tiny exp1 (h0 = 6 m, S = 0.5, three outputs) whose packing cache lies in dir.
+inline void write_tiny_exp1(const fs::path& dir, const std::string& name = "tiny.toml") {
+    write(dir / name, "[run]\nexperiment = \"exp1\"\n"
+                      "[wedge]\nv = 0.2\ns_max = 0.5\noutput_ds = 0.25\npro_margin = 3.0\nretro_length = 3.0\n"
+                      "[packing]\nh0 = 6.0\ncache_dir = \"" + (dir / "cache").string() + "\"\n");
 }
 
 }  // namespace cli

@@ -21,11 +21,6 @@ using namespace cli;
 
 namespace {
 
-struct Result {
-    int status = -1;  // exit status, or -1 when the process did not exit normally
-    std::string out, err;
-};
-
 /// Every path below dir with its size, for "nothing was written" checks.
 std::map<std::string, std::uintmax_t> listing(const fs::path& dir) {
     std::map<std::string, std::uintmax_t> m;
@@ -53,41 +48,7 @@ const char* kMisspelled =
     "[material]\n"
     "k_nn = 1e8\n";
 
-class Cli : public ::testing::Test {
-protected:
-    void SetUp() override {
-        std::string tmpl = (fs::temp_directory_path() / "orodem-cli-XXXXXX").string();
-        ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
-        root_ = tmpl;
-        work_ = root_ / "work";
-        capture_ = root_ / "capture";
-        fs::create_directories(work_);
-        fs::create_directories(capture_);
-    }
-    void TearDown() override {
-        std::error_code ec;
-        if (!root_.empty()) fs::remove_all(root_, ec);
-    }
-
-    /// Runs `orodem ARGS` in work_ (ARGS already shell-quoted where needed);
-    /// stdout and stderr go to files outside work_.
-    Result orodem(const std::string& args) {
-        const fs::path out = capture_ / "stdout", err = capture_ / "stderr";
-        const std::string cmd = "cd " + quote(work_.string()) + " && " + quote(ORODEM_EXE) + " " + args + " >" +
-                                quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
-        const int raw = std::system(cmd.c_str());
-        Result r;
-        r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
-        r.out = slurp(out);
-        r.err = slurp(err);
-        return r;
-    }
-
-    fs::path root_, work_, capture_;
-};
-
-#define EXPECT_HAS(text, needle) \
-    EXPECT_NE(std::string(text).find(needle), std::string::npos) << "missing \"" << (needle) << "\" in:\n" << (text)
+class Cli : public OrodemTest {};
 
 }  // namespace
 

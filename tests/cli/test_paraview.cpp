@@ -16,20 +16,12 @@
 namespace fs = std::filesystem;
 using namespace cli;
 
-namespace {
-}  // namespace
-
 TEST(ParaView, RunPvdSnapshotsOpenInVtk) {
     if (run("/usr/bin/python3 -c 'import vtk'") != 0) GTEST_SKIP() << "python3-vtk9 not installed";
     char tmpl[] = "/tmp/orodem-paraview-XXXXXX";
     ASSERT_NE(mkdtemp(tmpl), nullptr);
     const fs::path dir = tmpl;
-    {
-        std::ofstream cfg(dir / "tiny.toml");
-        cfg << "[run]\nexperiment = \"exp1\"\n"
-               "[wedge]\nv = 0.2\ns_max = 0.5\noutput_ds = 0.25\npro_margin = 3.0\nretro_length = 3.0\n"
-               "[packing]\nh0 = 6.0\ncache_dir = \"" << (dir / "cache").string() << "\"\n";
-    }
+    write_tiny_exp1(dir);
     std::string out;
     ASSERT_EQ(run(std::string(ORODEM_EXE) + " run " + (dir / "tiny.toml").string() + " --out " +
                   (dir / "r").string() + " --threads 1", &out), 0) << out;

@@ -66,39 +66,8 @@ Png decode_png(const fs::path& p, int r = -1, int g = -1, int b = -1) {
     return out;
 }
 
-class PlotRender : public ::testing::Test {
+class PlotRender : public OrodemTest {
 protected:
-    struct Result {
-        int status = -1;
-        std::string out, err;
-    };
-
-    void SetUp() override {
-        std::string tmpl = (fs::temp_directory_path() / "orodem-plot-XXXXXX").string();
-        ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
-        root_ = tmpl;
-        work_ = root_ / "work";
-        capture_ = root_ / "capture";
-        fs::create_directories(work_);
-        fs::create_directories(capture_);
-    }
-    void TearDown() override {
-        std::error_code ec;
-        if (!root_.empty()) fs::remove_all(root_, ec);
-    }
-
-    Result orodem(const std::string& args) {
-        const fs::path out = capture_ / "stdout", err = capture_ / "stderr";
-        const std::string cmd = "cd " + quote(work_.string()) + " && " + quote(ORODEM_EXE) + " " + args + " >" +
-                                quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
-        const int raw = std::system(cmd.c_str());
-        Result r;
-        r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
-        r.out = slurp(out);
-        r.err = slurp(err);
-        return r;
-    }
-
     /// A run directory as `orodem run` leaves it, small: 12 discs, two snapshots.
     fs::path make_run(const std::string& rel, double mu_bp) {
         const fs::path dir = work_ / rel;
@@ -128,12 +97,7 @@ protected:
                           {{0.0, "snapshots/S00.000.vtu"}, {1.0, "snapshots/S01.000.vtu"}});
         return dir;
     }
-
-    fs::path root_, work_, capture_;
 };
-
-#define EXPECT_HAS(text, needle) \
-    EXPECT_NE(std::string(text).find(needle), std::string::npos) << "missing \"" << (needle) << "\" in:\n" << (text)
 
 }  // namespace
 

@@ -3,6 +3,8 @@
 // φ = 30°, φ_b = 10°, β = 0 → 3.4365° and 23.9463°), --mu-b as an
 // alternative to --phib, and one-line errors with exit status 2.
 #include <gtest/gtest.h>
+
+#include "cli/cli_util.hpp"
 #include <stdlib.h>
 #include <sys/wait.h>
 
@@ -12,94 +14,45 @@
 #include <string>
 
 namespace fs = std::filesystem;
+using namespace cli;
 
 namespace {
 
-struct TaperResult {
-    int status = -1;  // exit status, or -1 when the process did not exit normally
-    std::string out, err;
-};
-
-std::string slurp_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-std::string shell_quote(const std::string& s) {
-    std::string q = "'";
-    for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-    return q + "'";
-}
-
-int line_count(const std::string& s) {
-    int n = 0;
-    for (char ch : s) n += ch == '\n';
-    return n;
-}
-
-class TaperCli : public ::testing::Test {
+class TaperCli : public OrodemTest {
 protected:
-    void SetUp() override {
-        std::string tmpl = (fs::temp_directory_path() / "orodem-taper-XXXXXX").string();
-        ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
-        dir_ = tmpl;
-    }
-    void TearDown() override {
-        std::error_code ec;
-        if (!dir_.empty()) fs::remove_all(dir_, ec);
-    }
-
-    /// Runs `orodem taper ARGS` in dir_.
-    TaperResult taper(const std::string& args) {
-        const fs::path out = dir_ / "stdout", err = dir_ / "stderr";
-        const std::string cmd = "cd " + shell_quote(dir_.string()) + " && " + shell_quote(ORODEM_EXE) + " taper " +
-                                args + " >" + shell_quote(out.string()) + " 2>" + shell_quote(err.string()) +
-                                " </dev/null";
-        const int raw = std::system(cmd.c_str());
-        TaperResult r;
-        r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
-        r.out = slurp_file(out);
-        r.err = slurp_file(err);
-        return r;
-    }
-
-    fs::path dir_;
+    /// Runs `orodem taper ARGS`.
+    Result taper(const std::string& args) { return orodem("taper " + args); }
 };
-
-#define EXPECT_CONTAINS(text, needle) \
-    EXPECT_NE(std::string(text).find(needle), std::string::npos) << "missing \"" << (needle) << "\" in:\n" << (text)
 
 }  // namespace
 
 TEST_F(TaperCli, PrintsBothCriticalSlopes) {
-    const TaperResult r = taper("--phi 30 --phib 10");
+    const Result r = taper("--phi 30 --phib 10");
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.err, "");
-    EXPECT_CONTAINS(r.out, "critical taper (compressive, lower branch): alpha = 3.437 deg");
-    EXPECT_CONTAINS(r.out, "critical taper (extensional, upper branch): alpha = 23.946 deg");
-    EXPECT_CONTAINS(r.out, "stable (slides on its base without failing inside) for 3.437 < alpha < 23.946 deg");
-    EXPECT_CONTAINS(r.out, "-10 <= beta <= 90 deg");
-    EXPECT_CONTAINS(r.out, "Dahlen 1984");
-    EXPECT_CONTAINS(r.out, "K = 2 sin phi/(1 - sin phi) = 2.0000");
+    EXPECT_HAS(r.out, "critical taper (compressive, lower branch): alpha = 3.437 deg");
+    EXPECT_HAS(r.out, "critical taper (extensional, upper branch): alpha = 23.946 deg");
+    EXPECT_HAS(r.out, "stable (slides on its base without failing inside) for 3.437 < alpha < 23.946 deg");
+    EXPECT_HAS(r.out, "-10 <= beta <= 90 deg");
+    EXPECT_HAS(r.out, "Dahlen 1984");
+    EXPECT_HAS(r.out, "K = 2 sin phi/(1 - sin phi) = 2.0000");
 }
 
 TEST_F(TaperCli, BasalDipAndFrictionCoefficient) {
     // --mu-b tan(10°) is --phib 10.
-    const TaperResult mu = taper("--phi 30 --mu-b 0.17632698070846498");
+    const Result mu = taper("--phi 30 --mu-b 0.17632698070846498");
     EXPECT_EQ(mu.status, 0) << mu.err;
-    EXPECT_CONTAINS(mu.out, "alpha = 3.437 deg");
-    EXPECT_CONTAINS(mu.out, "alpha = 23.946 deg");
+    EXPECT_HAS(mu.out, "alpha = 3.437 deg");
+    EXPECT_HAS(mu.out, "alpha = 23.946 deg");
     // A negative basal dip (base dipping toward the toe) as a plain argument.
-    const TaperResult dip = taper("--phi 30 --phib 10 --beta -5");
+    const Result dip = taper("--phi 30 --phib 10 --beta -5");
     EXPECT_EQ(dip.status, 0) << dip.err;
-    EXPECT_CONTAINS(dip.out, "alpha = 6.742 deg, alpha + beta = 1.742 deg");
+    EXPECT_HAS(dip.out, "alpha = 6.742 deg, alpha + beta = 1.742 deg");
     // The vertex of the stability field: both bounds at alpha = phi_b.
-    const TaperResult vertex = taper("--phi 30 --phib 10 --beta=-10");
+    const Result vertex = taper("--phi 30 --phib 10 --beta=-10");
     EXPECT_EQ(vertex.status, 0) << vertex.err;
-    EXPECT_CONTAINS(vertex.out, "lower branch): alpha = 10.000 deg");
-    EXPECT_CONTAINS(vertex.out, "upper branch): alpha = 10.000 deg");
+    EXPECT_HAS(vertex.out, "lower branch): alpha = 10.000 deg");
+    EXPECT_HAS(vertex.out, "upper branch): alpha = 10.000 deg");
 }
 
 TEST_F(TaperCli, BadInputExitsTwoWithOneLine) {
@@ -119,12 +72,12 @@ TEST_F(TaperCli, BadInputExitsTwoWithOneLine) {
         {"--phi 30 --phib 10 --beta nan", "--beta nan:"},
     };
     for (const Case& c : cases) {
-        const TaperResult r = taper(c.args);
+        const Result r = taper(c.args);
         SCOPED_TRACE(c.args);
         EXPECT_EQ(r.status, 2);
-        EXPECT_EQ(line_count(r.err), 1) << r.err;
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
         EXPECT_EQ(r.err.rfind("orodem: error: ", 0), 0u) << r.err;
-        EXPECT_CONTAINS(r.err, c.needle);
+        EXPECT_HAS(r.err, c.needle);
         EXPECT_EQ(r.out, "");
     }
     // Parse errors (CLI11) also exit 2.

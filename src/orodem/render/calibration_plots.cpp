@@ -33,34 +33,9 @@ Axis axis_for(double lo, double hi, int target) { return plot::axis_range(lo, hi
 /// Frame, grid, ticks and labels of a plot area; returns nothing, draws axes.
 void draw_axes(cairo_t* cr, const Axis& xa, const Axis& ya, double x0, double y0, double w, double h,
                const std::string& title, const std::string& xlabel, const std::string& ylabel, bool x_ticks) {
-    auto px = [&](double x) { return x0 + (x - xa.lo) / (xa.hi - xa.lo) * w; };
-    auto py = [&](double y) { return y0 + h - (y - ya.lo) / (ya.hi - ya.lo) * h; };
     cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr, kFont - 1);
-    cairo_set_line_width(cr, 1.0);
-    if (x_ticks)
-        for (int k = 0;; ++k) {
-            const double t = xa.lo + k * xa.step;
-            if (t > xa.hi + 1e-9 * xa.step) break;
-            cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
-            cairo_move_to(cr, px(t), y0);
-            cairo_line_to(cr, px(t), y0 + h);
-            cairo_stroke(cr);
-            cairo_set_source_rgb(cr, 0, 0, 0);
-            text_at(cr, tick_label(t, xa.step), px(t), y0 + h + 9, 0.5, 1.0);
-        }
-    for (int k = 0;; ++k) {
-        const double t = ya.lo + k * ya.step;
-        if (t > ya.hi + 1e-9 * ya.step) break;
-        const bool zero = std::fabs(t) < 1e-9 * ya.step && ya.lo < 0 && ya.hi > 0;
-        const double g = zero ? 0.6 : 0.9;
-        cairo_set_source_rgb(cr, g, g, g);
-        cairo_move_to(cr, x0, py(t));
-        cairo_line_to(cr, x0 + w, py(t));
-        cairo_stroke(cr);
-        cairo_set_source_rgb(cr, 0, 0, 0);
-        text_at(cr, tick_label(t, ya.step), x0 - 8, py(t), 1.0, 0.5);
-    }
+    plot::draw_grid(cr, xa, ya, x0, y0, w, h, x_ticks, false);
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_set_line_width(cr, 1.2);
     cairo_rectangle(cr, x0, y0, w, h);

@@ -52,6 +52,38 @@ std::string tick_label(double t, double step) {
     return fmt::format("{:g}", t);
 }
 
+void draw_grid(cairo_t* cr, const Range& xr, const Range& yr, double x0, double y0, double w, double h,
+               bool x_ticks, bool marks) {
+    auto px = [&](double x) { return x0 + (x - xr.lo) / (xr.hi - xr.lo) * w; };
+    auto py = [&](double y) { return y0 + h - (y - yr.lo) / (yr.hi - yr.lo) * h; };
+    auto line = [cr](double xa, double ya, double xb, double yb) {
+        cairo_move_to(cr, xa, ya);
+        cairo_line_to(cr, xb, yb);
+        cairo_stroke(cr);
+    };
+    cairo_set_line_width(cr, 1.0);
+    for (int k = 0; x_ticks; ++k) {
+        const double t = xr.lo + k * xr.step;
+        if (t > xr.hi + 1e-9 * xr.step) break;
+        cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
+        line(px(t), y0, px(t), y0 + h);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        if (marks) line(px(t), y0 + h, px(t), y0 + h + 5);
+        text_at(cr, tick_label(t, xr.step), px(t), y0 + h + 9, 0.5, 1.0);
+    }
+    for (int k = 0;; ++k) {
+        const double t = yr.lo + k * yr.step;
+        if (t > yr.hi + 1e-9 * yr.step) break;
+        const bool zero = std::fabs(t) < 1e-9 * yr.step && yr.lo < 0 && yr.hi > 0;
+        const double g = zero ? 0.6 : 0.9;
+        cairo_set_source_rgb(cr, g, g, g);
+        line(x0, py(t), x0 + w, py(t));
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        if (marks) line(x0 - 5, py(t), x0, py(t));
+        text_at(cr, tick_label(t, yr.step), x0 - 8, py(t), 1.0, 0.5);
+    }
+}
+
 cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length) {
     static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
     return CAIRO_STATUS_SUCCESS;

@@ -35,6 +35,12 @@ void text_at(cairo_t* cr, const std::string& s, double x, double y, double ax, d
 /// Tick label: "{:g}", with round-off around zero shown as 0.
 std::string tick_label(double t, double step);
 
+/// Grid lines (a darker zero line), tick labels in the current font and, with
+/// `marks`, 5-pixel tick marks, for the plot area (x0, y0, w, h) spanning
+/// xr × yr; vertical lines and x labels only with `x_ticks`.
+void draw_grid(cairo_t* cr, const Range& xr, const Range& yr, double x0, double y0, double w, double h,
+               bool x_ticks, bool marks);
+
 /// cairo write function appending to the std::string* closure.
 cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length);
 

@@ -69,35 +69,7 @@ void draw_panel(cairo_t* cr, const Panel& p, const Range& xr, double x0, double 
 
     // Grid, zero line, ticks and tick labels.
     cairo_set_font_size(cr, kFont - 1);
-    cairo_set_line_width(cr, 1.0);
-    for (int k = 0;; ++k) {
-        const double t = xr.lo + k * xr.step;
-        if (t > xr.hi + 1e-9 * xr.step) break;
-        cairo_set_source_rgb(cr, 0.9, 0.9, 0.9);
-        cairo_move_to(cr, px(t), y0);
-        cairo_line_to(cr, px(t), y0 + h);
-        cairo_stroke(cr);
-        cairo_set_source_rgb(cr, 0, 0, 0);
-        cairo_move_to(cr, px(t), y0 + h);
-        cairo_line_to(cr, px(t), y0 + h + 5);
-        cairo_stroke(cr);
-        text_at(cr, tick_label(t, xr.step), px(t), y0 + h + 9, 0.5, 1.0);
-    }
-    for (int k = 0;; ++k) {
-        const double t = yr.lo + k * yr.step;
-        if (t > yr.hi + 1e-9 * yr.step) break;
-        const bool zero = std::fabs(t) < 1e-9 * yr.step && yr.lo < 0 && yr.hi > 0;
-        const double g = zero ? 0.6 : 0.9;
-        cairo_set_source_rgb(cr, g, g, g);
-        cairo_move_to(cr, x0, py(t));
-        cairo_line_to(cr, x0 + w, py(t));
-        cairo_stroke(cr);
-        cairo_set_source_rgb(cr, 0, 0, 0);
-        cairo_move_to(cr, x0 - 5, py(t));
-        cairo_line_to(cr, x0, py(t));
-        cairo_stroke(cr);
-        text_at(cr, tick_label(t, yr.step), x0 - 8, py(t), 1.0, 0.5);
-    }
+    plot::draw_grid(cr, xr, yr, x0, y0, w, h, true, true);
 
     // Curves, clipped to the plot area; NaN breaks a line.
     cairo_save(cr);

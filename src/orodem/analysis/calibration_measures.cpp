@@ -24,8 +24,7 @@ Stress2 love_weber_stress(const Simulation& sim, double area) {
     const ContactStore& cs = sim.contacts;
     Stress2 s;
     for (std::size_t k = 0; k < cs.size(); ++k) {
-        const Vec2 xj = p.x[cs.j[k]] + Vec2{cs.shift[k] * sim.params.period_x, 0.0};
-        add_outer(s, cs.f[k], p.x[cs.i[k]] - xj);
+        add_outer(s, cs.f[k], sim.pair_branch(k));
     }
     const WallContactStore& ws = sim.wall_contacts;
     for (std::size_t i = 0; i < p.size(); ++i)

@@ -8,27 +8,13 @@
 
 namespace orodem {
 
-namespace {
-
-/// δ / min(R_i, R_j) of candidate pair k (negative when apart).
-double overlap_ratio(const Simulation& sim, std::size_t k) {
-    const ParticleStore& p = sim.particles;
-    const ContactStore& cs = sim.contacts;
-    const std::uint32_t i = cs.i[k], j = cs.j[k];
-    const Vec2 d = p.x[i] - (p.x[j] + Vec2{cs.shift[k] * sim.params.period_x, 0.0});
-    const double ri = p.radius[i], rj = p.radius[j];
-    return (ri + rj - norm(d)) / std::min(ri, rj);
-}
-
-}  // namespace
-
 OverlapSummary overlap_summary(const Simulation& sim, double threshold) {
     const ParticleStore& p = sim.particles;
     const ContactStore& cs = sim.contacts;
     OverlapSummary s;
     for (std::size_t k = 0; k < cs.size(); ++k) {
         if (cs.bonded[k]) continue;
-        const double ratio = overlap_ratio(sim, k);
+        const double ratio = sim.pair_overlap_ratio(k);
         if (ratio <= 0.0) continue;
         ++s.touching;
         if (ratio > threshold) ++s.above;
@@ -64,7 +50,7 @@ std::optional<HealthProblem> check_health(const Simulation& sim, const HealthLim
     for (std::size_t k = 0; k < cs.size(); ++k) {
         if (cs.bonded[k]) continue;
         const std::uint32_t i = cs.i[k], j = cs.j[k];
-        const double ratio = overlap_ratio(sim, k);
+        const double ratio = sim.pair_overlap_ratio(k);
         if (ratio > lim.max_overlap_ratio)
             return HealthProblem{"overlap", p.id[i], p.x[i],
                                  fmt::format("overlap {:.3f} of the smaller radius with disc {} at ({:g}, {:g}); "

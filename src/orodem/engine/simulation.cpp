@@ -410,31 +410,24 @@ std::size_t Simulation::touching_contacts() const {
 }
 
 double Simulation::max_overlap_ratio() const {
-    const ParticleStore& p = particles;
     const ContactStore& cs = contacts;
     double worst = 0.0;
     for (std::size_t k = 0; k < cs.size(); ++k) {
         if (cs.bonded[k]) continue;
-        const Vec2 d = p.x[cs.i[k]] - (p.x[cs.j[k]] + Vec2{cs.shift[k] * params.period_x, 0.0});
-        const double ri = p.radius[cs.i[k]], rj = p.radius[cs.j[k]];
-        const double delta = ri + rj - norm(d);
-        if (delta > 0.0) worst = std::max(worst, delta / std::min(ri, rj));
+        worst = std::max(worst, pair_overlap_ratio(k));
     }
     return worst;
 }
 
 double Simulation::mean_overlap_ratio() const {
-    const ParticleStore& p = particles;
     const ContactStore& cs = contacts;
     double sum = 0.0;
     std::size_t count = 0;
     for (std::size_t k = 0; k < cs.size(); ++k) {
         if (cs.bonded[k]) continue;
-        const Vec2 d = p.x[cs.i[k]] - (p.x[cs.j[k]] + Vec2{cs.shift[k] * params.period_x, 0.0});
-        const double ri = p.radius[cs.i[k]], rj = p.radius[cs.j[k]];
-        const double delta = ri + rj - norm(d);
-        if (delta > 0.0) {
-            sum += delta / std::min(ri, rj);
+        const double ratio = pair_overlap_ratio(k);
+        if (ratio > 0.0) {
+            sum += ratio;
             ++count;
         }
     }

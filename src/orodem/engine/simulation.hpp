@@ -107,6 +107,15 @@ public:
     double max_overlap_ratio() const;       // max over unbonded touching pairs of δ / min(R_i, R_j)
     double mean_overlap_ratio() const;      // mean over unbonded touching pairs of δ / min(R_i, R_j)
     double max_speed() const;               // max |v_i| [m/s]
+    /// x_i - x_j of candidate pair k, j's periodic image included [m].
+    Vec2 pair_branch(std::size_t k) const {
+        return particles.x[contacts.i[k]] - (particles.x[contacts.j[k]] + Vec2{contacts.shift[k] * params.period_x, 0.0});
+    }
+    /// δ / min(R_i, R_j) of candidate pair k; negative when the discs are apart [-].
+    double pair_overlap_ratio(std::size_t k) const {
+        const double ri = particles.radius[contacts.i[k]], rj = particles.radius[contacts.j[k]];
+        return (ri + rj - norm(pair_branch(k))) / std::min(ri, rj);
+    }
     /// Total force exerted by discs on wall w [N] (opposite of the forces on the discs).
     Vec2 wall_force(std::size_t w) const;
     std::uint64_t rebuild_count() const { return builder_.rebuild_count(); }

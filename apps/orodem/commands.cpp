@@ -8,7 +8,9 @@
 #include <sstream>
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -21,6 +23,7 @@
 #include "orodem/core/error.hpp"
 #include "orodem/io/config.hpp"
 #include "orodem/io/files.hpp"
+#include "orodem/io/series_reader.hpp"
 #include "orodem/io/packing_file.hpp"
 #include "orodem/io/pile_file.hpp"
 #include "orodem/setup/bench_pile.hpp"
@@ -220,7 +223,14 @@ ParticleStore prepare_layer(const Config& c, const std::string& dir, LineFile& l
 std::string series_header() {
     return "step,time,S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,kinetic_energy,contacts,"
            "max_overlap_ratio,toe_pro_x_over_h0,toe_retro_x_over_h0,base_traction,discs_on_base,"
-           "discs_sliding_on_base,fixed_discs,mean_overlap_ratio,max_speed,base_normal_force";
+           "discs_sliding_on_base,fixed_discs,mean_overlap_ratio,max_speed,base_normal_force,trailing_wall_push";
+}
+
+/// How many columns the series.csv of a run being resumed has: a run that an
+/// older orodem started keeps the columns it started with.
+std::size_t resumed_series_columns(const std::string& path) {
+    const std::string text = read_file(path);
+    return csv_leading_columns(text.substr(0, text.find('\n')), series_header(), path);
 }
 
 std::uint64_t file_bytes(const std::string& path) {
@@ -306,6 +316,8 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
         }
     }
     const std::string series_path = dir + "/series.csv";
+    const std::size_t series_columns =
+        resumed ? resumed_series_columns(series_path) : std::numeric_limits<std::size_t>::max();
     LineFile series(series_path);
     if (!resumed) series.line(series_header());
     const double dt = sim.params.dt;
@@ -390,13 +402,15 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
                                                "numerics.safety or wedge.v", sim.step_count, S));
         const WedgeMeasures m = measure_wedge(sim.particles, w.profile, c.wedge.v * sim.time);
         const std::size_t fixed = w.fixed_retro ? w.fixed_retro->fixed_count() : 0;
-        series.line(fmt::format("{},{:.9g},{:.6f},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.9g},{},{:.6g},{:.6g},{:.6g},"
-                                "{:.6g},{},{},{},{:.6g},{:.6g},{:.6g}",
+        series.line(csv_first_fields(fmt::format("{},{:.9g},{:.6f},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.9g},{},{:.6g},{:.6g},{:.6g},"
+                                "{:.6g},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g}",
                                 sim.step_count, sim.time, S, m.H_over_h0, m.alpha_deg, m.beta_deg,
                                 m.peak_dx_over_h0, m.dilation_pct, ke, sim.touching_contacts(),
                                 sim.max_overlap_ratio(), m.toe_pro_x / h0, m.toe_retro_x / h0,
                                 w.base->total_traction(), w.base->discs_on_base(), w.base->discs_sliding(), fixed,
-                                sim.mean_overlap_ratio(), sim.max_speed(), sim.wall_force(kWallProBase).y));
+                                sim.mean_overlap_ratio(), sim.max_speed(), sim.wall_force(kWallProBase).y,
+                                -sim.wall_force(kWallProEnd).x),
+                                series_columns));
         const double secs = progress.elapsed();
         const double rate = static_cast<double>(sim.step_count - first_step) / std::max(secs, 1e-9);
         log.line(fmt::format("S = {:.3f}: H/h0 = {:.3f}, alpha = {:.2f}, beta = {:.2f}; health: max overlap/R = {:.4f}, "

@@ -25,6 +25,7 @@
 #include "orodem/setup/packing.hpp"
 #include "orodem/setup/scenario.hpp"
 #include "orodem/setup/wedge.hpp"
+#include "layer_util.hpp"
 #include "test_util.hpp"
 
 using namespace orodem;
@@ -710,4 +711,50 @@ TEST(WedgeSetup, ConveyorCarriesIncomingPlate) {
     // discs_on_base() counts every disc the base pushes, including those
     // riding exactly at v' (zero traction).
     EXPECT_EQ(miscounted, 0);
+}
+
+TEST(WedgeSetup, OnAFrictionlessBaseTheTrailingWallAloneDrivesThePlate) {
+    // μ_bp = 0: the belt exerts no traction and the trailing wall, moving at
+    // v', is the only drive; series.csv reports its push on the plate as
+    // trailing_wall_push = -wall_force(kWallProEnd).x. Newton for all discs
+    // along x (the smooth base and gravity act along y, contacts cancel):
+    // Δ(Σ m v_x) = Σ dt (push - F_backstop) over the steps.
+    const SerialOmp serial;
+    const Config c = parse_config(
+        "[run]\nexperiment = \"critical-wedge\"\n[wedge]\nv = 0.2\nmu_bp = 0.0\ns_max = 1.0\npro_margin = 2.0\n"
+        "[packing]\nkind = \"clusters\"\nr_min = 0.5\nr_max = 0.75\nh0 = 3.0\n",
+        "frictionless.toml");
+    WedgeSetup w = make_wedge(c, test::settled_cut_layer(c));
+    Simulation& sim = w.sim;
+    sim.initialize();
+    const double dt = sim.params.dt;
+    sim.advance(static_cast<std::uint64_t>(std::llround(0.3 * c.packing.h0 / (c.wedge.v * dt))));
+    auto momentum = [&] {
+        double m = 0.0;
+        for (std::size_t s = 0; s < sim.particles.size(); ++s) m += sim.particles.mass[s] * sim.particles.v[s].x;
+        return m;
+    };
+    const double p0 = momentum();
+    double impulse = 0.0, push_sum = 0.0, back_sum = 0.0, scale = 0.0, largest = 0.0;
+    constexpr int kSteps = 3000;
+    for (int k = 0; k < kSteps; ++k) {
+        sim.step();
+        const double push = -sim.wall_force(kWallProEnd).x, back = sim.wall_force(kWallRetro).x;
+        impulse += dt * (push - back);
+        scale += dt * std::fabs(push);
+        largest = std::max(largest, std::fabs(push) + std::fabs(back));
+        push_sum += push;
+        back_sum += back;
+    }
+    const double dp = momentum() - p0;
+    std::printf("  mean push of the trailing wall %.6g N/m, on the backstop %.6g N/m; momentum change %.6g vs "
+                "impulse %.6g N s/m (of %.6g)\n",
+                push_sum / kSteps, back_sum / kSteps, dp, impulse, scale);
+    EXPECT_GT(push_sum, 0.0);  // the wall pushes the plate toward the S point
+    // Velocity Verlet applies the average of consecutive steps' forces: the
+    // sums differ by half a step's net force at each end, at most one step's
+    // impulse (3e-5 of the total here).
+    EXPECT_NEAR(dp, impulse, dt * largest);
+    // Quasi-static: what the wall puts in, the backstop takes (to 10%).
+    EXPECT_NEAR(back_sum / push_sum, 1.0, 0.1);
 }

@@ -1,5 +1,6 @@
 #include "orodem/io/series_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -153,6 +154,26 @@ std::vector<std::string> legend_labels(const std::vector<std::string>& config_te
     if (differing.empty() || !distinct)
         for (std::size_t i = 0; i < n; ++i) labels[i] = i < names.size() ? names[i] : fmt::format("run {}", i + 1);
     return labels;
+}
+
+std::size_t csv_leading_columns(const std::string& file_header, const std::string& header, const std::string& path) {
+    if (file_header.empty() ||
+        (file_header != header && header.compare(0, file_header.size() + 1, file_header + ",") != 0))
+        throw ConfigError(fmt::format("'{}' has the columns '{}', which are not the first ones of this orodem's "
+                                      "'{}'; continue the run with the orodem that started it",
+                                      path, file_header, header));
+    return 1 + static_cast<std::size_t>(std::count(file_header.begin(), file_header.end(), ','));
+}
+
+std::string csv_first_fields(const std::string& line, std::size_t n) {
+    if (n == 0) return {};
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        at = line.find(',', at);
+        if (at == std::string::npos) return line;
+        ++at;
+    }
+    return line.substr(0, at - 1);
 }
 
 }  // namespace orodem

@@ -24,6 +24,15 @@ struct Series {
 /// a run stopped mid-write leaves it, is skipped).
 Series read_series_csv(const std::string& path);
 
+/// The number of columns of `file_header` (the first line of the CSV file
+/// `path`) when they are the leading columns of `header`, i.e. the file was
+/// started by an orodem that wrote fewer columns; throws ConfigError naming
+/// both headers otherwise.
+std::size_t csv_leading_columns(const std::string& file_header, const std::string& header, const std::string& path);
+
+/// The first n comma-separated fields of a CSV line (all of it when it has fewer).
+std::string csv_first_fields(const std::string& line, std::size_t n);
+
 /// Legend labels for runs whose resolved configs are `config_texts` (TOML):
 /// the keys whose values differ among the runs, "key = value" joined by ", "
 /// (at most three, then "+N more"). Keys that do not change the physics

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "fuzz/checkpoint_fuzz_sim.hpp"
+#include "fuzz_regressions.hpp"
 #include "orodem/core/error.hpp"
 #include "orodem/io/checkpoint.hpp"
 #include "test_util.hpp"
@@ -25,15 +26,6 @@ using namespace orodem;
 namespace fs = std::filesystem;
 
 namespace {
-
-const fs::path kDir = fs::path(ORODEM_SOURCE_DIR) / "tests/fuzz/regressions/checkpoint";
-
-std::string read_all(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 /// Decodes file into sim; "" when accepted, else the CheckpointError message
 /// (the simulation must then be unchanged). Other exceptions fail the test.
@@ -62,16 +54,12 @@ std::string edited_checkpoint(Edit&& edit) {
 
 TEST(CheckpointRegressions, EverySavedFuzzInputIsAcceptedOrRefusedCleanly) {
     test::SerialOmp serial;
-    ASSERT_TRUE(fs::is_directory(kDir)) << kDir;
-    std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(kDir))
-        if (e.is_regular_file()) files.push_back(e.path());
-    std::sort(files.begin(), files.end());
-    ASSERT_FALSE(files.empty());
+    const auto inputs = test::fuzz_regressions("checkpoint");
+    ASSERT_FALSE(inputs.empty()) << "no saved inputs in tests/fuzz/regressions/checkpoint";
     auto sim = fuzz::make_checkpoint_sim();
-    for (const auto& f : files) {
-        SCOPED_TRACE(f.filename().string());
-        const std::string file = fuzz::checkpoint_file_of(read_all(f), sim->step_count);
+    for (const auto& [name, bytes] : inputs) {
+        SCOPED_TRACE(name);
+        const std::string file = fuzz::checkpoint_file_of(bytes, sim->step_count);
         try {
             (void)verify_checkpoint(file, fuzz::kConfigHash);
         } catch (const CheckpointError&) {

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "fuzz_regressions.hpp"
 #include "orodem/core/error.hpp"
 #include "orodem/io/config.hpp"
 
@@ -25,15 +26,6 @@ using namespace orodem;
 namespace fs = std::filesystem;
 
 namespace {
-
-const fs::path kDir = fs::path(ORODEM_SOURCE_DIR) / "tests/fuzz/regressions/config";
-
-std::string read_all(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 /// The "#set key=value" lines of text as overrides (as in fuzz_config.cpp);
 /// false when one of them is not key=value (parse_override refuses it).
@@ -70,15 +62,11 @@ const std::string kBase = "[run]\nexperiment = \"settle\"\n";
 }  // namespace
 
 TEST(ConfigRegressions, EverySavedFuzzInputIsAcceptedOrRefusedCleanly) {
-    ASSERT_TRUE(fs::is_directory(kDir)) << kDir;
-    std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(kDir))
-        if (e.is_regular_file()) files.push_back(e.path());
-    std::sort(files.begin(), files.end());
-    ASSERT_FALSE(files.empty());
-    for (const auto& f : files) {
-        SCOPED_TRACE(f.filename().string());
-        const std::string text = read_all(f);
+    const auto inputs = test::fuzz_regressions("config");
+    ASSERT_FALSE(inputs.empty()) << "no saved inputs in tests/fuzz/regressions/config";
+    for (const auto& [name, bytes] : inputs) {
+        SCOPED_TRACE(name);
+        const std::string& text = bytes;
         EXPECT_NO_FATAL_FAILURE(outcome(text));
         std::vector<Override> overrides;
         if (overrides_of(text, overrides) && !overrides.empty()) {

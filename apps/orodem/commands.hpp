@@ -40,6 +40,10 @@ int cmd_calibrate(const CommonArgs& a, const std::string& out_arg);
 struct Config;
 int check_calibration(const Config& c);
 
+/// orodem status (cmd_status.cpp): how far a wedge run got, how its last
+/// piece ended, its newest checkpoint, the time left and how to continue it.
+int cmd_status(const std::string& run_dir);
+
 /// Throws ConfigError unless dir exists and holds a config.toml.
 void require_run_dir(const std::string& dir);
 

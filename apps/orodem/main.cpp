@@ -35,6 +35,10 @@ int main(int argc, char** argv) {
     resume_cmd->add_option("run_dir", resume_dir, "Run directory")->required();
     resume_cmd->add_option("--threads", resume_args.threads, "OpenMP threads (0 = all cores)");
 
+    std::string status_dir;
+    auto* status = app.add_subcommand("status", "Where the wedge run in RUN_DIR stands: S reached, how its last piece "
+                                                "ended, newest checkpoint, time left, how to continue it; writes nothing");
+    status->add_option("run_dir", status_dir, "Run directory")->required();
     auto* check = app.add_subcommand("check", "Validate CONFIG and print the resolved config, particle count and dt; writes nothing");
     check->add_option("config", check_args.config, "TOML config file")->required();
     check->add_option("--set", check_args.sets, "Override a config value")->take_all();
@@ -112,6 +116,7 @@ int main(int argc, char** argv) {
             resume_args.config = resume_dir + "/config.toml";
             return cmd_run(resume_args, resume_dir, true);
         }
+        if (*status) return cmd_status(status_dir);
         if (*check) return cmd_check(check_args);
         if (*sweep) return cmd_sweep(sweep_args, sweep_vary, sweep_out);
         if (*calib) return cmd_calibrate(calib_args, calib_out);

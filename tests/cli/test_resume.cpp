@@ -323,3 +323,32 @@ TEST_F(Resume, AWallTimeLimitStopsWithExit5AndResumeFinishesTheSameRun) {
     ASSERT_EQ(wait_for(r), 0) << slurp(r.err);
     expect_same_outputs(reference_, run);
 }
+
+TEST_F(Resume, StatusSaysHowFarARunGotHowItEndedAndHowToContinueIt) {
+    std::string out;
+    // A finished run: 100%, its end line, nothing to continue.
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " status " + quote(reference_.string()), &out), 0) << out;
+    EXPECT_NE(out.find("progress: S = 0.500 of 0.5 (100.0%) at the last output, step "), std::string::npos) << out;
+    EXPECT_NE(out.find("state: finished: S = 0.500 after "), std::string::npos) << out;
+    EXPECT_EQ(out.find("continue with"), std::string::npos) << out;
+    // A run stopped at a wall-time limit: how it ended, its checkpoint, the command.
+    const fs::path stopped = root_ / "status";
+    const Proc p = start({"run", config_.string(), "--out", stopped.string(), "--threads", "1", "--set",
+                          "run.max_wall_minutes=0.00005"},
+                         root_ / "status");
+    ASSERT_EQ(wait_for(p), 5) << slurp(p.err);
+    const auto newest = orodem::list_checkpoints((stopped / "checkpoint").string()).front();  // newest first
+    ASSERT_GT(newest.first, 0u);
+    const std::string before = slurp(stopped / "log.txt");
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " status " + quote(stopped.string()), &out), 0) << out;
+    EXPECT_NE(out.find("state: stopped at the wall-time limit run.max_wall_minutes = 5e-05 at step"), std::string::npos)
+        << out;
+    EXPECT_NE(out.find("newest checkpoint: " + newest.second + " (step " + std::to_string(newest.first) + ", S = "),
+              std::string::npos)
+        << out;
+    EXPECT_NE(out.find("continue with: orodem resume " + stopped.string() + "\n"), std::string::npos) << out;
+    EXPECT_EQ(slurp(stopped / "log.txt"), before);  // status writes nothing
+    // Not a run directory: exit 2 and why.
+    EXPECT_EQ(run(std::string(ORODEM_EXE) + " status " + quote((root_ / "nowhere").string()), &out), 2) << out;
+    EXPECT_NE(out.find("no such run directory"), std::string::npos) << out;
+}

@@ -1,0 +1,127 @@
+// orodem status RUN_DIR: where a wedge run stands. Long runs go in pieces
+// (interrupted, stopped at a wall-time limit, resumed days later), so this
+// reads what the run directory already holds, writes nothing, and says: how
+// far the run got (S and steps), how its last piece ended (the last event
+// line of log.txt), the newest checkpoint, the last measured rate with the
+// time left at that rate, and the command that continues it.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "orodem/core/error.hpp"
+#include "orodem/io/checkpoint.hpp"
+#include "orodem/io/config.hpp"
+#include "orodem/io/files.hpp"
+
+namespace orodem {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+/// The number after `key` in line (e.g. "dt = 0.00018 s" for key "dt = "); NaN when absent.
+double number_after(const std::string& line, const std::string& key) {
+    const std::size_t at = line.find(key);
+    if (at == std::string::npos) return std::nan("");
+    try {
+        return std::stod(line.substr(at + key.size()));
+    } catch (const std::exception&) {
+        return std::nan("");
+    }
+}
+
+std::string duration_text(double secs) {
+    if (secs < 120.0) return fmt::format("{:.0f} s", secs);
+    if (secs < 7200.0) return fmt::format("{:.0f} min", secs / 60.0);
+    return fmt::format("{:.1f} h", secs / 3600.0);
+}
+
+}  // namespace
+
+int cmd_status(const std::string& dir) {
+    require_run_dir(dir);
+    const Config c = load_config(dir + "/config.toml");
+    if (!is_wedge(c))
+        throw ConfigError(fmt::format("'{}' is a run of run.experiment = \"{}\"; orodem status reads the wedge "
+                                      "experiments' run directories",
+                                      dir, c.run.experiment));
+    // log.txt: the timestep, the last output line (S and rate) and the last event.
+    std::string dt_line, last_output, last_event;
+    if (fs::exists(dir + "/log.txt")) {
+        std::istringstream log(read_file(dir + "/log.txt"));
+        for (std::string line; std::getline(log, line);) {
+            if (starts_with(line, "dt = ")) dt_line = line;
+            if (starts_with(line, "S = ")) last_output = line;
+            if (starts_with(line, "finished:") || starts_with(line, "interrupted by") ||
+                starts_with(line, "stopped at the wall-time limit") || starts_with(line, "STOPPED:") ||
+                starts_with(line, "UNSTABLE:") || starts_with(line, "resumed by"))
+                last_event = line;
+        }
+    }
+    // series.csv: the step of the last row (exact; S in the log is rounded).
+    double last_step = std::nan("");
+    if (fs::exists(dir + "/series.csv")) {
+        const std::string series = read_file(dir + "/series.csv");
+        const std::size_t end = series.find_last_not_of('\n');
+        const std::size_t begin = end == std::string::npos ? std::string::npos : series.rfind('\n', end);
+        if (begin != std::string::npos) last_step = number_after(series.substr(begin + 1), "");
+    }
+    const double dt = number_after(dt_line, "dt = ");
+    const double S = number_after(last_output, "S = ");
+    const double rate = number_after(last_output, "asleep; ");
+    const double h0 = c.packing.h0, v = c.wedge.v;
+    const double total = std::isfinite(dt) ? c.wedge.s_max * h0 / (v * dt) : std::nan("");
+
+    fmt::print("run: {} ({}, S_max = {:g}, h0 = {:g} m, v' = {:g} m/s)\n", dir, c.run.experiment, c.wedge.s_max, h0,
+               v);
+    if (std::isfinite(S))
+        fmt::print("progress: S = {:.3f} of {:g} ({:.1f}%) at the last output, step {:.0f} of about {:.3g}\n", S,
+                   c.wedge.s_max, 100.0 * S / c.wedge.s_max, last_step, total);
+    else
+        fmt::print("progress: no output yet (the packing may still be settling)\n");
+
+    const bool finished = starts_with(last_event, "finished:");
+    std::string state;
+    if (finished) {
+        state = last_event;
+    } else if (starts_with(last_event, "interrupted by") || starts_with(last_event, "stopped at the wall-time") ||
+               starts_with(last_event, "STOPPED:") || starts_with(last_event, "UNSTABLE:")) {
+        state = last_event;
+    } else {
+        // No end line after the last start: the process is still running, or
+        // it was killed (power cut, session end) after its last checkpoint.
+        std::error_code ec;
+        const auto written = fs::last_write_time(dir + "/log.txt", ec);
+        const double age =
+            ec ? std::nan("")
+               : std::chrono::duration<double>(fs::file_time_type::clock::now() - written).count();
+        state = fmt::format("no end line: still running, or killed (log.txt last written {} ago)",
+                            std::isfinite(age) ? duration_text(age) : std::string("?"));
+    }
+    fmt::print("state: {}\n", state);
+
+    const auto checkpoints = list_checkpoints(dir + "/checkpoint");
+    if (checkpoints.empty()) {
+        fmt::print("newest checkpoint: none\n");
+    } else {
+        const auto& [step, path] = checkpoints.front();  // newest first
+        fmt::print("newest checkpoint: {} (step {}, S = {:.4f})\n", path, step,
+                   std::isfinite(dt) ? static_cast<double>(step) * dt * v / h0 : std::nan(""));
+    }
+    if (!finished) {
+        if (std::isfinite(rate) && rate > 0.0 && std::isfinite(total) && std::isfinite(last_step))
+            fmt::print("rate: {:.0f} steps/s at the last output; about {} left at that rate\n", rate,
+                       duration_text((total - last_step) / rate));
+        fmt::print("continue with: orodem resume {}\n", dir);
+    }
+    return 0;
+}
+
+}  // namespace orodem

@@ -246,3 +246,35 @@ TEST_F(PlotRender, MissingOrBrokenRunDirectoriesExitWithOneLine) {
     EXPECT_HAS(r.err, "'S'");
     EXPECT_EQ(orodem("plot").status, 2);
 }
+
+TEST_F(PlotRender, PlateVelocityScriptBinsTheProsideDiscsOfASnapshot) {
+    // scripts/plate-velocity on a snapshot with known velocities: h0 = 2 m,
+    // v' = 0.2 m/s (config_text), bins of 1 h0 from the S point.
+    const fs::path dir = work_ / "plate";
+    fs::create_directories(dir / "snapshots");
+    write(dir / "config.toml", config_text(0.3));
+    orodem::ParticleStore p;
+    auto add = [&](double x, double y, double vx) { p.v[p.add({x, y}, 0.45, 2500.0)] = {vx, 0.0}; };
+    add(-0.5, 0.45, 0.1);   // bin 0, on the base: 0.5 v'
+    add(-1.0, 2.0, 0.2);    // bin 0, above it: 1.0 v'
+    add(-3.0, 0.46, -0.1);  // bin 1, on the base (bottom 1 cm up): -0.5 v'
+    add(1.0, 0.45, 0.5);    // retroside: left out
+    orodem::write_vtu((dir / "snapshots/S00.500.vtu").string(), p, std::vector<double>(p.size(), 0.0));
+    std::string out;
+    ASSERT_EQ(run("python3 " + quote(std::string(ORODEM_SOURCE_DIR) + "/scripts/plate-velocity") + " " +
+                      quote(dir.string()) + " 0.5 1.0",
+                  &out),
+              0)
+        << out;
+    std::istringstream lines(out);
+    std::vector<std::vector<double>> rows;
+    for (std::string line; std::getline(lines, line);) {
+        std::istringstream f(line);
+        std::vector<double> row;
+        for (double x; f >> x;) row.push_back(x);
+        if (row.size() == 4 && f.eof()) rows.push_back(row);
+    }
+    ASSERT_EQ(rows.size(), 2u) << out;
+    EXPECT_EQ(rows[0], (std::vector<double>{-0.5, 0.75, 0.5, 2.0})) << out;
+    EXPECT_EQ(rows[1], (std::vector<double>{-1.5, -0.5, -0.5, 1.0})) << out;
+}

@@ -1,14 +1,17 @@
-// orodem status RUN_DIR: where a wedge run stands. Long runs go in pieces
+// orodem status RUN_DIR: where a wedge run stands (or each run of a sweep's
+// folder). Long runs go in pieces
 // (interrupted, stopped at a wall-time limit, resumed days later), so this
 // reads what the run directory already holds, writes nothing, and says: how
 // far the run got (S and steps), how its last piece ended (the last event
 // line of log.txt), the newest checkpoint, the last measured rate with the
 // time left at that rate, and the command that continues it.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -45,7 +48,9 @@ std::string duration_text(double secs) {
 
 }  // namespace
 
-int cmd_status(const std::string& dir) {
+namespace {
+
+int status_of_run(const std::string& dir) {
     require_run_dir(dir);
     const Config c = load_config(dir + "/config.toml");
     if (!is_wedge(c))
@@ -122,6 +127,25 @@ int cmd_status(const std::string& dir) {
         fmt::print("continue with: orodem resume {}\n", dir);
     }
     return 0;
+}
+
+}  // namespace
+
+int cmd_status(const std::string& dir) {
+    // A sweep's folder (orodem sweep): the status of each member run.
+    std::error_code ec;
+    if (fs::is_directory(dir, ec) && !fs::exists(fs::path(dir) / "config.toml", ec)) {
+        std::vector<std::string> members;
+        for (const auto& e : fs::directory_iterator(dir, ec))
+            if (e.is_directory() && fs::exists(e.path() / "config.toml")) members.push_back(e.path().string());
+        std::sort(members.begin(), members.end());
+        for (std::size_t k = 0; k < members.size(); ++k) {
+            if (k) fmt::print("\n");
+            status_of_run(members[k]);
+        }
+        if (!members.empty()) return 0;
+    }
+    return status_of_run(dir);
 }
 
 }  // namespace orodem

@@ -36,8 +36,9 @@ int main(int argc, char** argv) {
     resume_cmd->add_option("--threads", resume_args.threads, "OpenMP threads (0 = all cores)");
 
     std::string status_dir;
-    auto* status = app.add_subcommand("status", "Where the wedge run in RUN_DIR stands: S reached, how its last piece "
-                                                "ended, newest checkpoint, time left, how to continue it; writes nothing");
+    auto* status = app.add_subcommand("status", "Where the wedge run in RUN_DIR (or each run of a sweep's folder) stands: "
+                                                "S reached, how its last piece ended, newest checkpoint, time left, how "
+                                                "to continue it; writes nothing");
     status->add_option("run_dir", status_dir, "Run directory")->required();
     auto* check = app.add_subcommand("check", "Validate CONFIG and print the resolved config, particle count and dt; writes nothing");
     check->add_option("config", check_args.config, "TOML config file")->required();

@@ -33,6 +33,11 @@ TEST(Sweep, OneRunPerValueReusingTheLayerThenPlots) {
     EXPECT_NE(slurp(dir / "sw" / "wedge.mu_bp=0.1" / "log.txt").find("settling a new packing"), std::string::npos);
     EXPECT_NE(slurp(dir / "sw" / "wedge.mu_bp=0.5" / "log.txt").find("packing reused"), std::string::npos);
     EXPECT_TRUE(fs::exists(dir / "sw" / "plots.png"));
+    // orodem status on the sweep's folder: each member, both finished.
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " status " + (dir / "sw").string(), &out), 0) << out;
+    EXPECT_NE(out.find("run: " + (dir / "sw" / "wedge.mu_bp=0.1").string()), std::string::npos) << out;
+    EXPECT_NE(out.find("run: " + (dir / "sw" / "wedge.mu_bp=0.5").string()), std::string::npos) << out;
+    EXPECT_NE(out.find("state: finished"), out.rfind("state: finished")) << out;
     // A bad value anywhere in the list is refused before any run starts.
     EXPECT_EQ(run(std::string(ORODEM_EXE) + " sweep " + (dir / "tiny.toml").string() +
                   " --vary wedge.mu_bp=0.1,-1 --out " + (dir / "sw2").string() + " --threads 1", &out), 2)

@@ -29,6 +29,16 @@ namespace {
 
 bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
+/// The log lines that end a piece of a run (commands.cpp writes them).
+constexpr const char* kEndLines[] = {"finished:", "interrupted by", "stopped at the wall-time limit", "STOPPED:",
+                                     "UNSTABLE:"};
+
+bool ends_a_piece(const std::string& line) {
+    for (const char* e : kEndLines)
+        if (starts_with(line, e)) return true;
+    return false;
+}
+
 /// The number after `key` in line (e.g. "dt = 0.00018 s" for key "dt = "); NaN when absent.
 double number_after(const std::string& line, const std::string& key) {
     const std::size_t at = line.find(key);
@@ -46,10 +56,6 @@ std::string duration_text(double secs) {
     return fmt::format("{:.1f} h", secs / 3600.0);
 }
 
-}  // namespace
-
-namespace {
-
 int status_of_run(const std::string& dir) {
     require_run_dir(dir);
     const Config c = load_config(dir + "/config.toml");
@@ -64,10 +70,7 @@ int status_of_run(const std::string& dir) {
         for (std::string line; std::getline(log, line);) {
             if (starts_with(line, "dt = ")) dt_line = line;
             if (starts_with(line, "S = ")) last_output = line;
-            if (starts_with(line, "finished:") || starts_with(line, "interrupted by") ||
-                starts_with(line, "stopped at the wall-time limit") || starts_with(line, "STOPPED:") ||
-                starts_with(line, "UNSTABLE:") || starts_with(line, "resumed by"))
-                last_event = line;
+            if (ends_a_piece(line) || starts_with(line, "resumed by")) last_event = line;
         }
     }
     // series.csv: the step of the last row (exact; S in the log is rounded).
@@ -94,10 +97,7 @@ int status_of_run(const std::string& dir) {
 
     const bool finished = starts_with(last_event, "finished:");
     std::string state;
-    if (finished) {
-        state = last_event;
-    } else if (starts_with(last_event, "interrupted by") || starts_with(last_event, "stopped at the wall-time") ||
-               starts_with(last_event, "STOPPED:") || starts_with(last_event, "UNSTABLE:")) {
+    if (ends_a_piece(last_event)) {
         state = last_event;
     } else {
         // No end line after the last start: the process is still running, or

@@ -7,13 +7,13 @@
 #include <csignal>
 #include <sstream>
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -518,34 +518,28 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
             check();
             if (stop_for) output();  // writes this step's outputs and checkpoint, then stops (exit 3)
         }
-        if (const int sig = signals.pending()) {
+        // Stopping between chunks (a signal, a batch job's time limit:
+        // RELIABILITY-CHECKLIST 10): a checked state, a checkpoint, a log
+        // line and on stderr the command that continues the run.
+        auto stop_with_checkpoint = [&](const std::string& why, const char* continue_label) {
             if (sim.step_count != next_output) check();
             const std::string path = save_checkpoint(state_bytes());
-            const double S = c.wedge.v * sim.time / h0;
-            const char* sig_name = sig == SIGINT ? "SIGINT" : "SIGTERM";
-            log.line(fmt::format("interrupted by {} at step {} (S = {:.4f}); checkpoint {}", sig_name,
-                                 sim.step_count, S, path));
+            const std::string what =
+                fmt::format("{} at step {} (S = {:.4f})", why, sim.step_count, c.wedge.v * sim.time / h0);
+            log.line(fmt::format("{}; checkpoint {}", what, path));
             progress.done();
-            fmt::print(stderr,
-                       "orodem: interrupted by {} at step {} (S = {:.4f}); checkpoint written to {}\n"
-                       "resume with: orodem run {}/config.toml --out {} --resume\n",
-                       sig_name, sim.step_count, S, path, dir, dir);
+            fmt::print(stderr, "orodem: {}; checkpoint written to {}\n{}: orodem run {}/config.toml --out {} --resume\n",
+                       what, path, continue_label, dir, dir);
+        };
+        if (const int sig = signals.pending()) {
+            stop_with_checkpoint(fmt::format("interrupted by {}", sig == SIGINT ? "SIGINT" : "SIGTERM"), "resume with");
             return 128 + sig;
         }
         if (c.run.max_wall_minutes > 0.0 && progress.elapsed() >= 60.0 * c.run.max_wall_minutes &&
             sim.step_count < total_steps) {
-            // A batch job's time limit (RELIABILITY-CHECKLIST 10): stop cleanly, resumable.
-            if (sim.step_count != next_output) check();
-            const std::string path = save_checkpoint(state_bytes());
-            const double S = c.wedge.v * sim.time / h0;
-            log.line(fmt::format("stopped at the wall-time limit run.max_wall_minutes = {:g} at step {} (S = {:.4f}); "
-                                 "checkpoint {}",
-                                 c.run.max_wall_minutes, sim.step_count, S, path));
-            progress.done();
-            fmt::print(stderr,
-                       "orodem: stopped at the wall-time limit run.max_wall_minutes = {:g} at step {} (S = {:.4f}); "
-                       "checkpoint written to {}\ncontinue with: orodem run {}/config.toml --out {} --resume\n",
-                       c.run.max_wall_minutes, sim.step_count, S, path, dir, dir);
+            stop_with_checkpoint(
+                fmt::format("stopped at the wall-time limit run.max_wall_minutes = {:g}", c.run.max_wall_minutes),
+                "continue with");
             return static_cast<int>(ExitCode::time_limit);
         }
         if (checkpoint_secs > 0.0 && sim.step_count != next_output &&

@@ -73,6 +73,13 @@ protected:
         const Proc p = start({"run", config_.string(), "--out", reference_.string(), "--threads", "1"}, root_ / "A");
         ASSERT_EQ(wait_for(p), 0) << slurp(p.err);
     }
+    /// Starts the tiny run into dir with a wall-time limit of 3 ms: it stops
+    /// at the first look after it (exit 5).
+    static Proc start_with_wall_limit(const fs::path& dir) {
+        return start({"run", config_.string(), "--out", dir.string(), "--threads", "1", "--set",
+                      "run.max_wall_minutes=0.00005"},
+                     dir);
+    }
     static void TearDownTestSuite() {
         std::error_code ec;
         fs::remove_all(root_, ec);
@@ -304,11 +311,8 @@ TEST_F(Resume, ASignalWhileSettlingExitsCleanlyAndResumeStartsAgain) {
 }
 
 TEST_F(Resume, AWallTimeLimitStopsWithExit5AndResumeFinishesTheSameRun) {
-    // A limit of 3 ms of wall time: the run stops at the first look after it.
     const fs::path run = root_ / "M";
-    const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1", "--set",
-                          "run.max_wall_minutes=0.00005"},
-                         root_ / "M");
+    const Proc p = start_with_wall_limit(run);
     ASSERT_EQ(wait_for(p), 5) << slurp(p.err);
     const std::string err = slurp(p.err);
     EXPECT_NE(err.find("stopped at the wall-time limit run.max_wall_minutes = 5e-05"), std::string::npos) << err;
@@ -333,9 +337,7 @@ TEST_F(Resume, StatusSaysHowFarARunGotHowItEndedAndHowToContinueIt) {
     EXPECT_EQ(out.find("continue with"), std::string::npos) << out;
     // A run stopped at a wall-time limit: how it ended, its checkpoint, the command.
     const fs::path stopped = root_ / "status";
-    const Proc p = start({"run", config_.string(), "--out", stopped.string(), "--threads", "1", "--set",
-                          "run.max_wall_minutes=0.00005"},
-                         root_ / "status");
+    const Proc p = start_with_wall_limit(stopped);
     ASSERT_EQ(wait_for(p), 5) << slurp(p.err);
     const auto newest = orodem::list_checkpoints((stopped / "checkpoint").string()).front();  // newest first
     ASSERT_GT(newest.first, 0u);

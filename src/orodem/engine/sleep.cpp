@@ -117,24 +117,21 @@ void Simulation::apply_sleep(double x_lo, double x_hi) {
 void Simulation::set_drift_range() {
     // The smallest slot range holding every awake disc and both discs of
     // every pair evaluated between rebuilds: what a step reads.
-    const std::size_t n = particles.size();
-    std::uint32_t b = std::min<std::uint32_t>(awake_begin_, static_cast<std::uint32_t>(n));
-    std::uint32_t e = std::min<std::uint32_t>(awake_end_, static_cast<std::uint32_t>(n));
-    if (b >= e) b = e = 0;
+    const auto n = static_cast<std::uint32_t>(particles.size());
+    std::uint32_t b = n, e = 0;  // empty
+    if (awake_begin_ < std::min(awake_end_, n)) {
+        b = awake_begin_;
+        e = std::min(awake_end_, n);
+    }
     const std::size_t pe = std::min<std::size_t>(pairs_end_, contacts.size());
     for (std::size_t k = pairs_begin_; k < pe; ++k) {
         const std::uint32_t lo = std::min(contacts.i[k], contacts.j[k]), hi = std::max(contacts.i[k], contacts.j[k]);
-        if (hi >= n) continue;
-        if (b == e) {
-            b = lo;
-            e = hi + 1;
-        } else {
-            b = std::min(b, lo);
-            e = std::max(e, hi + 1);
-        }
+        if (hi >= n) continue;  // a guard: the checkpoint reader refuses such pairs before a restore
+        b = std::min(b, lo);
+        e = std::max(e, hi + 1);
     }
-    drift_begin_ = b;
-    drift_end_ = e;
+    drift_begin_ = b < e ? b : 0;
+    drift_end_ = b < e ? e : 0;
 }
 
 void Simulation::catch_up_drift() {

@@ -63,6 +63,9 @@ std::string phase_breakdown(const PhaseTimes& t) {
                                      {"pair forces", t.pair_forces}, {"gather+walls", t.gather},
                                      {"boundaries", t.boundaries}})
         s += fmt::format("{}{} {:.3f} s ({:.1f}%)", s.empty() ? "" : ", ", name, secs, 100.0 * secs / total);
+    if (t.rebuilds > 0)
+        s += fmt::format("; {} steps, {} rebuilds (one per {:.0f} steps)", t.steps, t.rebuilds,
+                         static_cast<double>(t.steps) / static_cast<double>(t.rebuilds));
     return s;
 }
 
@@ -527,6 +530,7 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
             const std::string what =
                 fmt::format("{} at step {} (S = {:.4f})", why, sim.step_count, c.wedge.v * sim.time / h0);
             log.line(fmt::format("{}; checkpoint {}", what, path));
+            log.line("step phases (this process): " + phase_breakdown(sim.phase_times()));
             progress.done();
             fmt::print(stderr, "orodem: {}; checkpoint written to {}\n{}: orodem run {}/config.toml --out {} --resume\n",
                        what, path, continue_label, dir, dir);

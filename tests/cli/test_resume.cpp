@@ -320,6 +320,11 @@ TEST_F(Resume, AWallTimeLimitStopsWithExit5AndResumeFinishesTheSameRun) {
                             run.string() + " --resume";
     EXPECT_NE(err.find(cmd), std::string::npos) << err;
     ASSERT_LT(slurp(run / "series.csv").size(), slurp(reference_ / "series.csv").size()) << "was not stopped";
+    // The log ends with the stop and this piece's phase times (how fast it ran).
+    const std::string log = slurp(run / "log.txt");
+    const std::size_t stop_line = log.rfind("\nstopped at the wall-time limit");
+    ASSERT_NE(stop_line, std::string::npos) << log;
+    EXPECT_NE(log.find("\nstep phases (this process): integrate ", stop_line), std::string::npos) << log;
     // The limit does not enter the config hash: resume without it.
     const Proc r = start({"run", run.string() + "/config.toml", "--out", run.string(), "--resume", "--threads", "1",
                           "--set", "run.max_wall_minutes=0"},

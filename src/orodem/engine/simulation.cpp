@@ -328,6 +328,7 @@ void Simulation::step() {
         } else {
             lap_to(times_.integrate, kicked_at_);
             rebuild_pairs();
+            ++times_.rebuilds;
             lap(times_.rebuild);
             pair_forces_gather_kick();
             lap_to(times_.pair_forces, pairs_done_at_);
@@ -342,7 +343,10 @@ void Simulation::step() {
         // A rebuild step evaluates every pair and disc (fresh forces and
         // diagnostics for the sleeping zones too); other steps the awake ones.
         const bool rebuilt = needs_rebuild(wall_move);
-        if (rebuilt) rebuild_pairs();
+        if (rebuilt) {
+            rebuild_pairs();
+            ++times_.rebuilds;
+        }
         lap(times_.rebuild);
         pair_forces<true>(rebuilt);
         lap(times_.pair_forces);

@@ -64,6 +64,7 @@ struct PhaseTimes {
                                // half kick when no boundary can change forces, see step())
     double boundaries = 0.0;   // wall motion and Boundary hooks
     std::uint64_t steps = 0;   // steps timed
+    std::uint64_t rebuilds = 0;  // neighbour rebuilds among them
     double total() const { return integrate + rebuild + pair_forces + gather + boundaries; }
 };
 

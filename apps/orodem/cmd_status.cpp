@@ -50,12 +50,6 @@ double number_after(const std::string& line, const std::string& key) {
     }
 }
 
-std::string duration_text(double secs) {
-    if (secs < 120.0) return fmt::format("{:.0f} s", secs);
-    if (secs < 7200.0) return fmt::format("{:.0f} min", secs / 60.0);
-    return fmt::format("{:.1f} h", secs / 3600.0);
-}
-
 int status_of_run(const std::string& dir) {
     require_run_dir(dir);
     const Config c = load_config(dir + "/config.toml");
@@ -130,6 +124,12 @@ int status_of_run(const std::string& dir) {
 }
 
 }  // namespace
+
+std::string duration_text(double secs) {
+    if (secs < 120.0) return fmt::format("{:.0f} s", secs);
+    if (secs < 7200.0) return fmt::format("{:.0f} min", secs / 60.0);
+    return fmt::format("{:.1f} h", secs / 3600.0);
+}
 
 int cmd_status(const std::string& dir) {
     // A sweep's folder (orodem sweep): the status of each member run.

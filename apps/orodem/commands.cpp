@@ -109,10 +109,18 @@ int cmd_check(const CommonArgs& a) {
         const double steps = c.wedge.s_max * c.packing.h0 / (c.wedge.v * t.dt);
         fmt::print("belt speed v'          = {:g} m/s (eq. 6 limit {:.4g} m/s, margin {:.1f}x)\n", c.wedge.v,
                    belt_speed_limit(c), belt_speed_limit(c) / c.wedge.v);
-        fmt::print("steps to S = {:g}       = {:.3g} ({:.3g} disc-steps)\n", c.wedge.s_max, steps,
-                   steps * static_cast<double>(n) * 0.8);
-        fmt::print("estimated run time     = {:.0f} s at 1.5e7 disc-steps/s (plus settling if not cached)\n",
-                   steps * static_cast<double>(n) * 0.8 / 1.5e7);
+        // Rates of wedge runs on the 2-core development machine per awake
+        // disc (docs/benchmarks.md); with sleeping zones about two thirds of
+        // the discs are awake on average over S = 0-8 (the intermediate runs).
+        constexpr double kRate1 = 2.8e7, kRate2 = 4.8e7;  // awake disc-steps/s, 1 and 2 threads
+        const double awake = c.wedge.sleep ? 2.0 / 3.0 : 1.0;
+        const double work = steps * static_cast<double>(n) * 0.8 * awake;  // 0.8: the cut to h0
+        fmt::print("steps to S = {:g}       = {:.3g} ({:.3g} {}disc-steps)\n", c.wedge.s_max, steps, work,
+                   c.wedge.sleep ? "awake " : "");
+        fmt::print("estimated run time     = {} on 1 thread, {} on 2 (at {:.2g} and {:.2g} {}disc-steps/s measured on "
+                   "2 cores{}; plus settling if not cached)\n",
+                   duration_text(work / kRate1), duration_text(work / kRate2), kRate1, kRate2,
+                   c.wedge.sleep ? "awake " : "", c.wedge.sleep ? ", two thirds of the discs awake" : "");
     }
     fmt::print("packing cache          = {}\n", packing_cache_path(c));
     return 0;

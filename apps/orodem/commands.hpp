@@ -43,6 +43,8 @@ int check_calibration(const Config& c);
 /// orodem status (cmd_status.cpp): how far a wedge run got, how its last
 /// piece ended, its newest checkpoint, the time left and how to continue it.
 int cmd_status(const std::string& run_dir);
+/// "42 s", "17 min" or "3.5 h".
+std::string duration_text(double secs);
 
 /// Throws ConfigError unless dir exists and holds a config.toml.
 void require_run_dir(const std::string& dir);

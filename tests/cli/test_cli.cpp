@@ -219,6 +219,30 @@ TEST_F(Cli, CoarseTimestepRunsWithAWarning) {
     EXPECT_EQ(fine.err.find("warning"), std::string::npos) << fine.err;
 }
 
+TEST_F(Cli, CheckEstimatesTheWorkOfAWedgeRunFromItsStepsDiscsAndSleeping) {
+    // Paper-size Experiment 1: S = 8 h0 / (v' dt) steps; the work is steps x
+    // discs x 0.8 (the cut to h0) x 2/3 awake with sleeping zones, all awake without.
+    const std::string cfg = quote((fs::path(ORODEM_SOURCE_DIR) / "configs" / "exp1.toml").string());
+    const Result on = orodem("check " + cfg), off = orodem("check " + cfg + " --set wedge.sleep=false");
+    ASSERT_EQ(on.status, 0) << on.err;
+    ASSERT_EQ(off.status, 0) << off.err;
+    auto number_after = [](const std::string& out, const std::string& key) {
+        const std::size_t at = out.find(key);
+        return at == std::string::npos ? -1.0 : std::stod(out.substr(at + key.size()));
+    };
+    const double dt = number_after(on.out, "dt                     = ");
+    const double discs = number_after(on.out, "particles generated    = ");
+    const double steps = number_after(on.out, "steps to S = 8       = ");
+    EXPECT_NEAR(steps, 8.0 * 55.0 / (0.1 * dt), 1e-3 * steps);
+    const std::size_t open = on.out.find('(', on.out.find("steps to S = 8")) + 1;
+    EXPECT_NEAR(std::stod(on.out.substr(open)), steps * discs * 0.8 * 2.0 / 3.0, 2e-3 * steps * discs);
+    EXPECT_HAS(on.out, "awake disc-steps)");
+    const std::size_t open_off = off.out.find('(', off.out.find("steps to S = 8")) + 1;
+    EXPECT_NEAR(std::stod(off.out.substr(open_off)), steps * discs * 0.8, 2e-3 * steps * discs);
+    EXPECT_EQ(off.out.find("awake"), std::string::npos) << off.out;
+    EXPECT_HAS(on.out, "estimated run time     = ");
+}
+
 TEST_F(Cli, EveryShippedConfigPassesCheck) {
     // configs/ (paper size), configs/demo/, configs/mid/, configs/calibrate/:
     // a schema change that breaks a shipped config fails here, not at a user.

@@ -58,13 +58,25 @@ int status_of_run(const std::string& dir) {
                                       "experiments' run directories",
                                       dir, c.run.experiment));
     // log.txt: the timestep, the last output line (S and rate) and the last event.
+    // The wall time of the pieces whose end line gives it ("... 2482.3 s wall").
     std::string dt_line, last_output, last_event;
+    double wall = 0.0;
+    int pieces = 0, pieces_timed = 0;
     if (fs::exists(dir + "/log.txt")) {
         std::istringstream log(read_file(dir + "/log.txt"));
         for (std::string line; std::getline(log, line);) {
             if (starts_with(line, "dt = ")) dt_line = line;
             if (starts_with(line, "S = ")) last_output = line;
+            if (starts_with(line, "orodem ") || starts_with(line, "resumed by")) ++pieces;
             if (ends_a_piece(line) || starts_with(line, "resumed by")) last_event = line;
+            if (const std::size_t at = line.find(" s wall"); ends_a_piece(line) && at != std::string::npos) {
+                const std::size_t sp = line.rfind(' ', at - 1);  // the number is the word before " s wall"
+                const double secs = sp == std::string::npos ? std::nan("") : number_after(line.substr(sp + 1), "");
+                if (std::isfinite(secs)) {
+                    wall += secs;
+                    ++pieces_timed;
+                }
+            }
         }
     }
     // series.csv: the step of the last row (exact; S in the log is rounded).
@@ -105,6 +117,10 @@ int status_of_run(const std::string& dir) {
                             std::isfinite(age) ? duration_text(age) : std::string("?"));
     }
     fmt::print("state: {}\n", state);
+    if (pieces_timed > 0)
+        fmt::print("wall time: {} in {} of its {} piece{}{}\n", duration_text(wall), pieces_timed, pieces,
+                   pieces == 1 ? "" : "s",
+                   pieces_timed < pieces ? " (the others have no end line giving it: killed, or still running)" : "");
 
     const auto checkpoints = list_checkpoints(dir + "/checkpoint");
     if (checkpoints.empty()) {

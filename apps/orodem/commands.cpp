@@ -535,8 +535,8 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
         auto stop_with_checkpoint = [&](const std::string& why, const char* continue_label) {
             if (sim.step_count != next_output) check();
             const std::string path = save_checkpoint(state_bytes());
-            const std::string what =
-                fmt::format("{} at step {} (S = {:.4f})", why, sim.step_count, c.wedge.v * sim.time / h0);
+            const std::string what = fmt::format("{} at step {} (S = {:.4f}) after {:.1f} s wall", why, sim.step_count,
+                                                 c.wedge.v * sim.time / h0, progress.elapsed());
             log.line(fmt::format("{}; checkpoint {}", what, path));
             log.line("step phases (this process): " + phase_breakdown(sim.phase_times()));
             progress.done();

@@ -333,6 +333,33 @@ TEST_F(Resume, AWallTimeLimitStopsWithExit5AndResumeFinishesTheSameRun) {
     expect_same_outputs(reference_, run);
 }
 
+TEST_F(Resume, StatusAddsUpTheWallTimeOfThePiecesWhoseEndLineGivesIt) {
+    // A run in three pieces: stopped by SIGTERM after 3000 s, killed (no end
+    // line), finished after 4200 s: 7200 s = 2.0 h in 2 of its 3 pieces.
+    const fs::path dir = root_ / "wall";
+    fs::create_directories(dir);
+    for (const char* f : {"config.toml", "series.csv"}) fs::copy_file(reference_ / f, dir / f);
+    write(dir / "log.txt",
+          "orodem 0.1.0 run of c.toml (exp1) with 1 threads\n"
+          "dt = 0.0001 s, stability limit 0.001 s (margin 10x), t_c = 20 steps\n"
+          "S = 0.250: H/h0 = 0.1; 0 discs asleep; 900 steps/s\n"
+          "interrupted by SIGTERM at step 100 (S = 0.2500) after 3000.0 s wall; checkpoint x.bin\n"
+          "step phases (this process): integrate 1.000 s (100.0%)\n"
+          "resumed by orodem 0.1.0 from x.bin at step 100 (S = 0.25) with 1 threads\n"
+          "resumed by orodem 0.1.0 from x.bin at step 100 (S = 0.25) with 1 threads\n"
+          "S = 0.500: H/h0 = 0.2; 0 discs asleep; 900 steps/s\n"
+          "finished: S = 0.500 after 200 steps, 4200.0 s wall\n");
+    std::string out;
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " status " + quote(dir.string()), &out), 0) << out;
+    EXPECT_NE(out.find("wall time: 2.0 h in 2 of its 3 pieces (the others have no end line giving it"),
+              std::string::npos)
+        << out;
+    // The real end lines carry it: a wall-limited stop, then the finished reference.
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " status " + quote(reference_.string()), &out), 0) << out;
+    EXPECT_NE(out.find("wall time: "), std::string::npos) << out;
+    EXPECT_NE(out.find(" in 1 of its 1 piece\n"), std::string::npos) << out;
+}
+
 TEST_F(Resume, StatusSaysHowFarARunGotHowItEndedAndHowToContinueIt) {
     std::string out;
     // A finished run: 100%, its end line, nothing to continue.
@@ -350,6 +377,8 @@ TEST_F(Resume, StatusSaysHowFarARunGotHowItEndedAndHowToContinueIt) {
     ASSERT_EQ(run(std::string(ORODEM_EXE) + " status " + quote(stopped.string()), &out), 0) << out;
     EXPECT_NE(out.find("state: stopped at the wall-time limit run.max_wall_minutes = 5e-05 at step"), std::string::npos)
         << out;
+    EXPECT_NE(out.find(" s wall; checkpoint "), std::string::npos) << out;
+    EXPECT_NE(out.find("wall time: "), std::string::npos) << out;
     EXPECT_NE(out.find("newest checkpoint: " + newest.second + " (step " + std::to_string(newest.first) + ", S = "),
               std::string::npos)
         << out;

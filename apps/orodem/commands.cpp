@@ -405,7 +405,7 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
         throw InstabilityError(msg);
     };
 
-    auto write_row = [&]() {
+    auto write_row = [&]() -> WedgeMeasures {
         const double S = c.wedge.v * sim.time / h0;
         const double ke = sim.kinetic_energy();
         if (!std::isfinite(ke))
@@ -431,6 +431,7 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
                              sim.sleeping_count(), rate));
         progress.show("S = {:.3f} / {:g}, {:.0f} steps/s, {:.0f} s left", S, c.wedge.s_max, rate,
                       static_cast<double>(total_steps - std::min(total_steps, sim.step_count)) / std::max(rate, 1e-9));
+        return m;
     };
     make_dirs(dir + "/figures");
     make_dirs(dir + "/snapshots");
@@ -464,10 +465,25 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
     // The free space is checked at every output against what the rest of the
     // run writes (after the checkpoint, so a stop for space can be resumed).
     bool overlap_warned = false;  // stderr once; log.txt at every output
+    // The paper's plates are infinite slabs ([40]): once the raised surface
+    // runs back to within h0 of the trailing wall, the wall pushes the
+    // deformed plate and the toe, α and D measure the whole plate. Said once
+    // per process, on stderr and in log.txt.
+    bool wall_warned = false;
     auto output = [&]() {
         check();
-        write_row();
+        const WedgeMeasures m = write_row();
         draw();
+        if (const double wall_x = sim.walls[kWallProEnd].a.x; !wall_warned && m.toe_pro_x - wall_x < h0) {
+            const std::string msg = fmt::format(
+                "the prowedge reaches the trailing wall at S = {:.3f} (toe at {:.2f} h0, wall at {:.2f} h0 from the "
+                "S point): from here the wall pushes the deformed plate, and the toe, alpha and D measure the whole "
+                "plate; the incoming plate is too short for this run: raise wedge.pro_margin (now {:g} h0)",
+                c.wedge.v * sim.time / h0, m.toe_pro_x / h0, wall_x / h0, c.wedge.pro_margin);
+            log.line("warning: " + msg);
+            fmt::print(stderr, "\norodem: warning: {}\n", msg);
+            wall_warned = true;
+        }
         ++st.outputs;
         if (const double worst = sim.max_overlap_ratio(); worst > c.run.warn_overlap_ratio) {
             const std::string msg = fmt::format(

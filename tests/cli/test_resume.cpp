@@ -242,7 +242,8 @@ TEST_F(Resume, AnOverlapAboveTheWarningLevelIsReportedOnceOnStderrAndAtEveryOutp
     const std::string err = slurp(p.err);
     EXPECT_NE(err.find("orodem: warning: largest overlap/R = 0.01"), std::string::npos) << err;
     EXPECT_NE(err.find("above run.warn_overlap_ratio = 0.001"), std::string::npos) << err;
-    EXPECT_EQ(err.find("orodem: warning:"), err.rfind("orodem: warning:")) << "more than one warning: " << err;
+    EXPECT_EQ(err.find("orodem: warning: largest overlap"), err.rfind("orodem: warning: largest overlap"))
+        << "more than one overlap warning: " << err;
     EXPECT_NE(err.find("(further warnings in log.txt only)"), std::string::npos) << err;
     const std::string log = slurp(run / "log.txt");
     int warnings = 0;
@@ -252,6 +253,35 @@ TEST_F(Resume, AnOverlapAboveTheWarningLevelIsReportedOnceOnStderrAndAtEveryOutp
     EXPECT_EQ(warnings, count_lines(slurp(run / "series.csv")) - 1);  // one per output row
     // The warning changes nothing: the outputs are those of the reference run.
     EXPECT_EQ(slurp(run / "series.csv"), slurp(reference_ / "series.csv"));
+}
+
+TEST_F(Resume, APlateDeformedBackToTheTrailingWallIsReportedOnce) {
+    // The tiny run's plate is 3 h0 + S h0 long: by S = 0.5 its surface is
+    // raised all the way back to the trailing wall, and the run says so once
+    // on stderr and once in log.txt, naming wedge.pro_margin. The reference
+    // run (same config) shows the same in its log. With a plate of 20 h0 the
+    // deformation stays far from the wall and nothing is said.
+    const std::string said = "warning: the prowedge reaches the trailing wall at S = ";
+    const std::string ref_log = slurp(reference_ / "log.txt");
+    const auto at = ref_log.find(said);
+    ASSERT_NE(at, std::string::npos) << ref_log;
+    EXPECT_EQ(at, ref_log.rfind(said)) << "said more than once: " << ref_log;
+    EXPECT_NE(ref_log.find("raise wedge.pro_margin (now 3 h0)"), std::string::npos) << ref_log;
+
+    const fs::path run = root_ / "W";
+    const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1"}, root_ / "W");
+    ASSERT_EQ(wait_for(p), 0) << slurp(p.err);
+    const std::string err = slurp(p.err);
+    EXPECT_NE(err.find("orodem: " + said), std::string::npos) << err;
+    EXPECT_EQ(err.find(said), err.rfind(said)) << err;
+
+    const fs::path long_plate = root_ / "W2";
+    const Proc q = start({"run", config_.string(), "--out", long_plate.string(), "--threads", "1", "--set",
+                          "wedge.pro_margin=20"},
+                         root_ / "W2");
+    ASSERT_EQ(wait_for(q), 0) << slurp(q.err);
+    EXPECT_EQ(slurp(q.err).find("trailing wall"), std::string::npos) << slurp(q.err);
+    EXPECT_EQ(slurp(long_plate / "log.txt").find("trailing wall"), std::string::npos);
 }
 
 TEST_F(Resume, ADiscLeavingTheDomainStopsWithTheChosenPolicy) {

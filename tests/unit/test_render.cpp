@@ -207,3 +207,56 @@ TEST(Render, ThirtyThousandDiscsTiming) {
     EXPECT_TRUE(img.ok());
     fs::remove_all(dir);
 }
+
+TEST(Render, PositiveQuantileIsTheNearestRankOfThePositiveValues) {
+    // 1000 positive values k/1000 (k = 1..1000), shuffled, and 500 zeros:
+    // the 0.99 quantile of the positives by nearest rank is the value of rank
+    // ceil(0.99 · 1000) = 990, i.e. 0.990; q = 1 gives the maximum; the zeros
+    // do not count; no positive value gives 0.
+    std::vector<double> v;
+    for (int k = 1; k <= 1000; ++k) v.push_back((k * 7919 % 1000 + 1) / 1000.0);  // a permutation of 1..1000
+    v.insert(v.begin() + 300, 500, 0.0);
+    EXPECT_EQ(positive_quantile(v, 0.99), 990 / 1000.0);
+    EXPECT_EQ(positive_quantile(v, 1.0), 1.0);
+    EXPECT_EQ(positive_quantile(v, 0.5), 500 / 1000.0);
+    EXPECT_EQ(positive_quantile(std::vector<double>(10, 0.0), 0.99), 0.0);
+    EXPECT_EQ(positive_quantile({}, 0.99), 0.0);
+}
+
+TEST(Render, DisplacementColourIsScaledToTheQuantileNotTheMaximum) {
+    // 200 discs: 198 carry 0.1 (a shear zone), one 0.05, one outlier 1.0 (a
+    // disc rolling down a slope). The 0.99 quantile of the 200 positives is
+    // the value of rank 198: 0.1. So a 0.1 disc is full dark red (scaled
+    // value 1: (0.65, 0.1, 0.1)), the 0.05 disc mid orange (scaled 0.5:
+    // (1, 0.75, 0.1)), and the outlier clipped to full red. Scaled to the
+    // maximum instead, the 0.1 disc would be near white (1, 0.95, 0.82).
+    const fs::path dir = scratch_dir("disp");
+    ParticleStore p;
+    std::vector<double> scalar;
+    const Vec2 c_zone{-2.5, 1.0}, c_half{-0.5, 1.0}, c_outlier{2.0, 1.0};
+    p.add(c_zone, 0.3, 2500.0);
+    scalar.push_back(0.1);
+    p.add(c_half, 0.3, 2500.0);
+    scalar.push_back(0.05);
+    p.add(c_outlier, 0.3, 2500.0);
+    scalar.push_back(1.0);
+    for (int k = 0; k < 197; ++k) {  // off the picture: they count in the scale only
+        p.add({100.0 + k, 1.0}, 0.3, 2500.0);
+        scalar.push_back(0.1);
+    }
+    ViewOptions o = view(1690);
+    o.color_by = "displacement";
+    const std::string png = (dir / "d.png").string();
+    render_particles(p, &scalar, o, png);
+    Image img(png);
+    ASSERT_TRUE(img.ok());
+    const double scale = (1690 - kMarginL - kMarginR) / (o.x_max - o.x_min);
+    auto pixel = [&](Vec2 c) {
+        return img.at(static_cast<int>(kMarginL + (c.x - o.x_min) * scale),
+                      static_cast<int>(kMarginT + (o.y_max - c.y) * scale));
+    };
+    EXPECT_TRUE(close_color(pixel(c_zone), expect8(0.65, 0.1, 0.1)));
+    EXPECT_TRUE(close_color(pixel(c_half), expect8(1.0, 0.75, 0.1)));
+    EXPECT_TRUE(close_color(pixel(c_outlier), expect8(0.65, 0.1, 0.1)));
+    fs::remove_all(dir);
+}

@@ -47,6 +47,18 @@ std::string extension(const std::string& path) {
 
 }  // namespace
 
+double positive_quantile(const std::vector<double>& v, double q) {
+    std::vector<double> pos;
+    pos.reserve(v.size());
+    for (double x : v)
+        if (x > 0.0) pos.push_back(x);
+    if (pos.empty()) return 0.0;
+    const auto n = static_cast<double>(pos.size());
+    const std::size_t rank = static_cast<std::size_t>(std::clamp(std::ceil(q * n), 1.0, n));  // 1-based
+    std::nth_element(pos.begin(), pos.begin() + static_cast<std::ptrdiff_t>(rank - 1), pos.end());
+    return pos[rank - 1];
+}
+
 void render_particles(const ParticleStore& p, const std::vector<double>* scalar, const ViewOptions& o,
                       const std::string& path) {
     const double margin_l = 70, margin_r = 20, margin_t = 40, margin_b = 50;  // [px]
@@ -68,6 +80,9 @@ void render_particles(const ParticleStore& p, const std::vector<double>* scalar,
     auto px = [&](double x) { return margin_l + (x - o.x_min) * scale; };
     auto py = [&](double y) { return margin_t + (o.y_max - y) * scale; };
 
+    const bool by_displacement = o.color_by == "displacement" && scalar;
+    const double full_red = by_displacement ? positive_quantile(*scalar, o.displacement_quantile) : 0.0;
+
     // Discs.
     cairo_save(cr);
     cairo_rectangle(cr, margin_l, margin_t, (o.x_max - o.x_min) * scale, (o.y_max - o.y_min) * scale);
@@ -75,8 +90,8 @@ void render_particles(const ParticleStore& p, const std::vector<double>* scalar,
     for (std::size_t s = 0; s < p.size(); ++s) {
         const double x = p.x[s].x, y = p.x[s].y, r = p.radius[s];
         if (x + r < o.x_min || x - r > o.x_max || y + r < o.y_min || y - r > o.y_max) continue;
-        const Rgb c = (o.color_by == "displacement" && scalar)
-                          ? displacement_color((*scalar)[s])
+        const Rgb c = by_displacement
+                          ? displacement_color(full_red > 0.0 ? (*scalar)[s] / full_red : 0.0)
                           : horizon_color(p.initial_depth[s], o.band, p.side[s] != 0);
         cairo_set_source_rgb(cr, c.r, c.g, c.b);
         cairo_new_sub_path(cr);

@@ -1,6 +1,8 @@
 // `orodem plot RUN_DIR...`: the four panels of the wedge measurements against
 // S (SPEC §3), several runs overlaid, labelled by what differs between their
-// resolved configs.
+// resolved configs; with --seeds, the runs of one config with different
+// seeds drawn as their mean over a min-max band (seed_ensemble).
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <string>
@@ -63,7 +65,7 @@ void require_run_dir(const std::string& dir) {
         throw ConfigError(fmt::format("'{}': not a run directory (no config.toml)", dir));
 }
 
-int cmd_plot(const std::vector<std::string>& run_dirs, const std::string& out_arg) {
+int cmd_plot(const std::vector<std::string>& run_dirs, const std::string& out_arg, bool seeds) {
     if (run_dirs.empty()) throw ConfigError("plot: give at least one run directory");
     std::vector<std::string> texts, names, sources, experiments;
     std::vector<Series> series;
@@ -80,7 +82,37 @@ int cmd_plot(const std::vector<std::string>& run_dirs, const std::string& out_ar
         if (!fs::exists(csv)) throw IoError(fmt::format("'{}': no such file; the run wrote no series", csv.string()));
         series.push_back(read_series_csv(csv.string()));
     }
-    const std::vector<std::string> labels = legend_labels(texts, names, sources);
+    std::vector<std::string> labels = legend_labels(texts, names, sources);
+    std::vector<SeriesEnsemble> ensembles;
+    std::vector<SeriesBand> bands;
+    if (seeds) {  // one curve per group of runs that differ only in their seeds
+        const std::vector<std::size_t> group = seed_groups(texts, names, sources);
+        const std::size_t n_groups = *std::max_element(group.begin(), group.end()) + 1;
+        std::vector<std::string> g_texts, g_names, g_sources;
+        std::vector<std::vector<const Series*>> members(n_groups);
+        for (std::size_t i = 0; i < group.size(); ++i) {
+            if (members[group[i]].empty())
+                g_texts.push_back(texts[i]), g_names.push_back(names[i]), g_sources.push_back(sources[i]);
+            members[group[i]].push_back(&series[i]);
+        }
+        const std::vector<std::string> g_labels = legend_labels(g_texts, g_names, g_sources, true);
+        ensembles.reserve(n_groups);  // bands point into it
+        std::vector<Series> means;
+        labels.clear();
+        for (std::size_t g = 0; g < n_groups; ++g) {
+            ensembles.push_back(seed_ensemble(members[g]));
+            means.push_back(ensembles.back().mean);
+            bands.push_back({&ensembles.back().lo, &ensembles.back().hi});
+            const std::size_t n = members[g].size();
+            labels.push_back(n_groups == 1 ? fmt::format("mean of {} seeds, band: lowest to highest", n)
+                                           : fmt::format("{} ({} seed{})", g_labels[g], n, n == 1 ? "" : "s"));
+            std::string runs;
+            for (std::size_t i = 0; i < group.size(); ++i)
+                if (group[i] == g) runs += (runs.empty() ? "" : ", ") + names[i];
+            fmt::print("plot: {}: {}\n", labels.back(), runs);
+        }
+        series = std::move(means);
+    }
 
     std::string out = out_arg;
     if (out.empty())
@@ -100,7 +132,7 @@ int cmd_plot(const std::vector<std::string>& run_dirs, const std::string& out_ar
     o.title = run_dirs.size() == 1
                   ? fmt::format("{}{}", what, names.front())
                   : fmt::format("{}{} runs in {}", what, run_dirs.size(), common_parent(absolute).filename().string());
-    plot_series(series, labels, out, o);
+    plot_series(series, labels, out, o, bands);
     fmt::print("plot: {}\n", out);
     return 0;
 }

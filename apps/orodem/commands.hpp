@@ -23,8 +23,9 @@ int cmd_bench_pile(const std::string& pile, std::uint64_t steps, int threads);
 
 /// orodem plot (cmd_plot.cpp): the S plots of one or more runs into out
 /// (default RUN_DIR/figures/plots.png for one run, <common parent>/plots.png
-/// for several).
-int cmd_plot(const std::vector<std::string>& run_dirs, const std::string& out);
+/// for several); with seeds, the runs that differ only in their seeds as one
+/// mean curve each over a band from their lowest to their highest value.
+int cmd_plot(const std::vector<std::string>& run_dirs, const std::string& out, bool seeds = false);
 
 /// orodem render (cmd_render.cpp): horizon and displacement pictures of the
 /// snapshots nearest each S of `at` (all when empty) into RUN_DIR/figures/.

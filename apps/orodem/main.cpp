@@ -55,11 +55,15 @@ int main(int argc, char** argv) {
 
     std::vector<std::string> plot_dirs;
     std::string plot_out;
+    bool plot_seeds = false;
     auto* plot = app.add_subcommand("plot", "Plot alpha, beta, H/h0, peak deviation and dilation against S for one or "
                                             "more runs, overlaid and labelled by what differs between their configs");
     plot->add_option("run_dirs", plot_dirs, "Run directories (each with config.toml and series.csv)")->required();
     plot->add_option("--out", plot_out, "Output file, .png, .svg or .pdf; default RUN_DIR/figures/plots.png for "
                                         "one run, <common parent>/plots.png for several");
+    plot->add_flag("--seeds", plot_seeds, "Draw the runs that differ only in their seeds (run.seed, packing.seed) as "
+                                          "one curve each: the mean over the seeds, over a band shaded from the "
+                                          "lowest to the highest value");
 
     std::string render_dir, render_format = "png";
     std::vector<double> render_at;
@@ -121,7 +125,7 @@ int main(int argc, char** argv) {
         if (*check) return cmd_check(check_args);
         if (*sweep) return cmd_sweep(sweep_args, sweep_vary, sweep_out);
         if (*calib) return cmd_calibrate(calib_args, calib_out);
-        if (*plot) return cmd_plot(plot_dirs, plot_out);
+        if (*plot) return cmd_plot(plot_dirs, plot_out, plot_seeds);
         if (*render) return cmd_render(render_dir, render_at, render_format, render_width);
         if (*taper) return cmd_taper(taper_phi, taper_phib, taper_mu_b, taper_beta);
         if (*pile) return cmd_bench_pile(pile_file, pile_steps, pile_threads);

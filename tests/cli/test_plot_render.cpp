@@ -315,3 +315,75 @@ TEST_F(PlotRender, ValidateFindingsScriptMeasuresRunsAndTheSpreadOverSeeds) {
     EXPECT_NE(run(script + " --spread A" + " 2>&1", &out), 0);
     EXPECT_HAS(out, "LABEL=RUN_DIR");
 }
+
+TEST_F(PlotRender, SeedGroupsJoinTheRunsThatDifferOnlyInTheirSeeds) {
+    const std::string a = config_text(0.3), b = config_text(0.5);
+    auto seeded = [](std::string t, int seed) {
+        return t.replace(t.find("kind = 'clusters'\n"), 18, "kind = 'clusters'\nseed = " + std::to_string(seed) + "\n");
+    };
+    // Seeds, and the thread count (not physics), do not split a group; mu_bp does.
+    const std::vector<std::string> texts = {seeded(a, 1), seeded(b, 1), seeded(a, 2), config_text(0.3, 8),
+                                            seeded(b, 7) + "[numerics]\ndt = 1e-4\n"};
+    EXPECT_EQ(orodem::seed_groups(texts, {"a", "b", "c", "d", "e"}, {}), (std::vector<std::size_t>{0, 1, 0, 0, 2}));
+    EXPECT_THROW(orodem::seed_groups({a, "[run\n"}, {"a", "b"}, {}), orodem::IoError);
+}
+
+TEST_F(PlotRender, SeedEnsembleIsTheMeanAndRangeOfTheRunsAtEachS) {
+    // Three runs: the third one row shorter, the second with a NaN; rows
+    // matched by S (the first run's S carries round-off below 1e-6).
+    auto series = [](std::vector<double> S, std::vector<double> a) {
+        orodem::Series s;
+        s.path = "x";
+        s.names = {"S", "alpha_deg"};
+        s.values = {std::move(S), std::move(a)};
+        return s;
+    };
+    const double nan = std::nan("");
+    const orodem::Series r1 = series({0.25 + 1e-9, 0.5, 0.75}, {1.0, 2.0, 3.0});
+    const orodem::Series r2 = series({0.25, 0.5, 0.75}, {4.0, nan, 6.0});
+    const orodem::Series r3 = series({0.25, 0.5}, {7.0, 11.0});
+    const orodem::SeriesEnsemble e = orodem::seed_ensemble({&r1, &r2, &r3});
+    ASSERT_EQ(e.mean.rows(), 3u);
+    EXPECT_EQ(e.mean.values[0], (std::vector<double>{0.25 + 1e-9, 0.5, 0.75}));
+    EXPECT_EQ(e.mean.values[1], (std::vector<double>{4.0, 6.5, 4.5}));
+    EXPECT_EQ(e.lo.values[1], (std::vector<double>{1.0, 2.0, 3.0}));
+    EXPECT_EQ(e.hi.values[1], (std::vector<double>{7.0, 11.0, 6.0}));
+    EXPECT_EQ(e.count[1], (std::vector<int>{3, 2, 2}));
+    EXPECT_EQ(e.count[0], (std::vector<int>{3, 3, 2}));
+    const orodem::Series no_alpha = series({0.25}, {1.0});
+    orodem::Series renamed = no_alpha;
+    renamed.names[1] = "beta_deg";
+    EXPECT_THROW(orodem::seed_ensemble({&r1, &renamed}), orodem::ConfigError);
+}
+
+TEST_F(PlotRender, PlotSeedsDrawsOneMeanCurveOverAShadedBand) {
+    // Three runs of one config with different packing seeds and their own
+    // alpha: with --seeds one curve in the first colour over a band of that
+    // colour at 20% on white (210, 228, 240); without it, three colours and
+    // no band.
+    for (int k = 1; k <= 3; ++k) {
+        const fs::path dir = make_run("seeds/s" + std::to_string(k), 0.3);
+        std::string t = config_text(0.3);
+        write(dir / "config.toml",
+              t.replace(t.find("kind = 'clusters'\n"), 18, "kind = 'clusters'\nseed = " + std::to_string(k) + "\n"));
+        write(dir / "series.csv", std::string(kHeader) + "0,0,0.25,0.2," + std::to_string(4 * k) +
+                                      ",20,0.1,50,1,40\n10,1,1.0,0.4," + std::to_string(6 * k) + ",22,0.2,60,1,41\n");
+    }
+    Result r = orodem("plot seeds/s1 seeds/s2 seeds/s3 --out band.png --seeds");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_HAS(r.out, "plot: mean of 3 seeds, band: lowest to highest: s1, s2, s3");
+    const Png band = decode_png(work_ / "band.png", 210, 228, 240), second = decode_png(work_ / "band.png", 227, 26, 28);
+    ASSERT_TRUE(band.ok);
+    EXPECT_GT(band.matching, 5000) << band.matching;
+    EXPECT_EQ(second.matching, 0);
+    r = orodem("plot seeds/s1 seeds/s2 seeds/s3 --out lines.png");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_LT(decode_png(work_ / "lines.png", 210, 228, 240).matching, band.matching / 20);  // only antialiased line edges
+    EXPECT_GT(decode_png(work_ / "lines.png", 227, 26, 28).matching, 100);
+    // Two configs: one curve and band each, labelled by what differs.
+    const fs::path other = make_run("seeds/m5", 0.5);
+    r = orodem("plot seeds/s1 seeds/m5 seeds/s2 --out two.png --seeds");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_HAS(r.out, "plot: wedge.mu_bp = 0.3 (2 seeds): s1, s2");
+    EXPECT_HAS(r.out, "plot: wedge.mu_bp = 0.5 (1 seed): m5");
+}

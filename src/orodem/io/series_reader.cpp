@@ -109,14 +109,20 @@ Series read_series_csv(const std::string& path) {
     return s;
 }
 
-std::vector<std::string> legend_labels(const std::vector<std::string>& config_texts,
-                                       const std::vector<std::string>& names,
-                                       const std::vector<std::string>& sources) {
-    static const std::set<std::string> kIgnored = {"run.threads", "packing.cache_dir"};
-    const std::size_t n = config_texts.size();
-    std::vector<std::map<std::string, std::string>> flat(n);
-    std::set<std::string> keys;
-    for (std::size_t i = 0; i < n; ++i) {
+namespace {
+
+/// Keys that do not change the physics of a run.
+const std::set<std::string> kIgnored = {"run.threads", "packing.cache_dir"};
+/// Keys that change only the random packing (the seed groups of seed_groups).
+const std::set<std::string> kSeedKeys = {"run.seed", "packing.seed"};
+
+/// Each config text flattened to "a.b.c" -> value text; throws IoError
+/// naming the source of a text that is not TOML.
+std::vector<std::map<std::string, std::string>> flat_configs(const std::vector<std::string>& config_texts,
+                                                             const std::vector<std::string>& names,
+                                                             const std::vector<std::string>& sources) {
+    std::vector<std::map<std::string, std::string>> flat(config_texts.size());
+    for (std::size_t i = 0; i < config_texts.size(); ++i) {
         const std::string source = i < sources.size() ? sources[i] : (i < names.size() ? names[i] : "config");
         try {
             flatten(toml::parse(std::string_view(config_texts[i]), std::string_view(source)), "", flat[i]);
@@ -124,11 +130,23 @@ std::vector<std::string> legend_labels(const std::vector<std::string>& config_te
             throw IoError(fmt::format("'{}': not readable as TOML: {} (line {})", source, e.description(),
                                       e.source().begin.line));
         }
-        for (const auto& [k, v] : flat[i]) keys.insert(k);
     }
+    return flat;
+}
+
+}  // namespace
+
+std::vector<std::string> legend_labels(const std::vector<std::string>& config_texts,
+                                       const std::vector<std::string>& names,
+                                       const std::vector<std::string>& sources, bool ignore_seeds) {
+    const std::size_t n = config_texts.size();
+    const auto flat = flat_configs(config_texts, names, sources);
+    std::set<std::string> keys;
+    for (const auto& f : flat)
+        for (const auto& [k, v] : f) keys.insert(k);
     std::vector<std::string> differing;
     for (const std::string& k : keys) {
-        if (kIgnored.count(k)) continue;
+        if (kIgnored.count(k) || (ignore_seeds && kSeedKeys.count(k))) continue;
         for (std::size_t i = 1; i < n; ++i) {
             const auto a = flat[0].find(k), b = flat[i].find(k);
             const bool same = (a == flat[0].end()) == (b == flat[i].end()) &&
@@ -174,6 +192,80 @@ std::string csv_first_fields(const std::string& line, std::size_t n) {
         ++at;
     }
     return line.substr(0, at - 1);
+}
+
+std::vector<std::size_t> seed_groups(const std::vector<std::string>& config_texts,
+                                     const std::vector<std::string>& names,
+                                     const std::vector<std::string>& sources) {
+    auto flat = flat_configs(config_texts, names, sources);
+    for (auto& f : flat) {
+        for (const std::string& k : kIgnored) f.erase(k);
+        for (const std::string& k : kSeedKeys) f.erase(k);
+    }
+    std::vector<std::size_t> group(flat.size());
+    std::vector<std::size_t> first;  // the first run of each group
+    for (std::size_t i = 0; i < flat.size(); ++i) {
+        const auto same = std::find_if(first.begin(), first.end(), [&](std::size_t j) { return flat[j] == flat[i]; });
+        group[i] = static_cast<std::size_t>(same - first.begin());
+        if (same == first.end()) first.push_back(i);
+    }
+    return group;
+}
+
+SeriesEnsemble seed_ensemble(const std::vector<const Series*>& members) {
+    if (members.empty()) throw ConfigError("seed_ensemble: no runs");
+    const std::vector<std::string>& names = members.front()->names;
+    auto key = [](double S) { return std::llround(S * 1e6); };  // S matched to 1e-6
+    std::map<long long, double> grid;                             // key -> S of its first occurrence
+    std::vector<std::vector<const std::vector<double>*>> cols(members.size());
+    std::vector<std::map<long long, std::size_t>> row_of(members.size());
+    for (std::size_t m = 0; m < members.size(); ++m) {
+        const Series& s = *members[m];
+        const std::vector<double>* S = s.column("S");
+        if (!S) throw ConfigError(fmt::format("'{}' has no column 'S': not the series of a wedge run", s.path));
+        for (const std::string& name : names) {
+            cols[m].push_back(s.column(name));
+            if (!cols[m].back())
+                throw ConfigError(fmt::format("'{}' has no column '{}', which '{}' has", s.path, name,
+                                              members.front()->path));
+        }
+        for (std::size_t r = 0; r < S->size(); ++r)
+            if (std::isfinite((*S)[r])) {
+                grid.emplace(key((*S)[r]), (*S)[r]);
+                row_of[m].emplace(key((*S)[r]), r);
+            }
+    }
+    SeriesEnsemble e;
+    for (Series* out : {&e.mean, &e.lo, &e.hi}) {
+        out->path = members.front()->path;
+        out->names = names;
+        out->values.assign(names.size(), {});
+    }
+    e.count.assign(names.size(), {});
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const auto& [k, S] : grid)
+        for (std::size_t c = 0; c < names.size(); ++c) {
+            if (names[c] == "S") {  // the matched S itself; count: the members that have this row
+                for (Series* out : {&e.mean, &e.lo, &e.hi}) out->values[c].push_back(S);
+                e.count[c].push_back(static_cast<int>(std::count_if(
+                    row_of.begin(), row_of.end(), [&, k = k](const auto& rows) { return rows.count(k) > 0; })));
+                continue;
+            }
+            double sum = 0.0, lo = INFINITY, hi = -INFINITY;
+            int n = 0;
+            for (std::size_t m = 0; m < members.size(); ++m) {  // members in the given order: a fixed sum order
+                const auto at = row_of[m].find(k);
+                if (at == row_of[m].end()) continue;
+                const double v = (*cols[m][c])[at->second];
+                if (!std::isfinite(v)) continue;
+                sum += v, lo = std::min(lo, v), hi = std::max(hi, v), ++n;
+            }
+            e.mean.values[c].push_back(n ? sum / n : nan);
+            e.lo.values[c].push_back(n ? lo : nan);
+            e.hi.values[c].push_back(n ? hi : nan);
+            e.count[c].push_back(n);
+        }
+    return e;
 }
 
 }  // namespace orodem

@@ -1,6 +1,7 @@
 // Reading back what a run directory holds, for `orodem plot` and
-// `orodem render`: series.csv as named numeric columns, and legend labels
-// for several runs from the differences between their resolved config.toml.
+// `orodem render`: series.csv as named numeric columns, legend labels for
+// several runs from the differences between their resolved config.toml, and
+// the runs that differ only in their seeds, gathered into one ensemble.
 #pragma once
 
 #include <string>
@@ -39,8 +40,33 @@ std::string csv_first_fields(const std::string& line, std::size_t n);
 /// (run.threads, packing.cache_dir) are ignored. Where nothing differs, or the
 /// labels would not tell the runs apart, names[i] is used. `sources` name the
 /// texts in errors (a TOML syntax error throws IoError naming the source).
+/// With ignore_seeds, run.seed and packing.seed are ignored too (labels for
+/// the seed groups of seed_groups).
 std::vector<std::string> legend_labels(const std::vector<std::string>& config_texts,
                                        const std::vector<std::string>& names,
-                                       const std::vector<std::string>& sources);
+                                       const std::vector<std::string>& sources, bool ignore_seeds = false);
+
+/// Groups of runs that differ only in their seeds: group[i] is the index of
+/// run i's group, groups numbered in order of first appearance. Two runs are
+/// in one group when their resolved configs agree on every key except
+/// run.seed, packing.seed and the keys legend_labels ignores. Errors as
+/// legend_labels.
+std::vector<std::size_t> seed_groups(const std::vector<std::string>& config_texts,
+                                     const std::vector<std::string>& names,
+                                     const std::vector<std::string>& sources);
+
+/// Several runs of one config with different seeds, row by row: rows are
+/// matched by their S (to 1e-6), over the union of the members' S values in
+/// increasing order; each other column holds the mean (`mean`), the lowest
+/// (`lo`) and the highest (`hi`) of the members' finite values at that S, or
+/// NaN where none is finite. `count` has the number of finite values per
+/// column and row.
+struct SeriesEnsemble {
+    Series mean, lo, hi;
+    std::vector<std::vector<int>> count;  // count[c][row]
+};
+/// Throws ConfigError when a member lacks the column "S" or a column of the
+/// first member.
+SeriesEnsemble seed_ensemble(const std::vector<const Series*>& members);
 
 }  // namespace orodem

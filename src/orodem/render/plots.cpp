@@ -41,7 +41,11 @@ struct Curve {
     const std::vector<double>* y;
     Rgb color;
     bool dashed;
+    const std::vector<double>* lo = nullptr;  // band under the curve, drawn where x, lo and hi are finite
+    const std::vector<double>* hi = nullptr;
 };
+
+constexpr double kBandAlpha = 0.2;  // opacity of a band's fill
 
 struct Panel {
     std::string title, ylabel;
@@ -53,11 +57,12 @@ void draw_panel(cairo_t* cr, const Panel& p, const Range& xr, double x0, double 
     // Data range over every finite point.
     double lo = INFINITY, hi = -INFINITY;
     for (const Curve& c : p.curves)
-        for (std::size_t k = 0; k < c.y->size(); ++k)
-            if (std::isfinite((*c.y)[k]) && std::isfinite((*c.x)[k])) {
-                lo = std::min(lo, (*c.y)[k]);
-                hi = std::max(hi, (*c.y)[k]);
-            }
+        for (const std::vector<double>* y : {c.y, c.lo, c.hi})
+            for (std::size_t k = 0; y && k < std::min(y->size(), c.x->size()); ++k)
+                if (std::isfinite((*y)[k]) && std::isfinite((*c.x)[k])) {
+                    lo = std::min(lo, (*y)[k]);
+                    hi = std::max(hi, (*y)[k]);
+                }
     if (lo < hi) {  // a little room so that lines do not run along the frame
         const double pad = 0.03 * (hi - lo);
         lo = lo >= 0.0 ? std::max(0.0, lo - pad) : lo - pad;  // non-negative data keep a 0 floor
@@ -75,6 +80,30 @@ void draw_panel(cairo_t* cr, const Panel& p, const Range& xr, double x0, double 
     cairo_save(cr);
     cairo_rectangle(cr, x0, y0, w, h);
     cairo_clip(cr);
+    // Bands first, under every line: lo forward and hi back along each run of
+    // rows where both are finite.
+    for (const Curve& c : p.curves) {
+        if (!c.lo || !c.hi) continue;
+        const std::size_t n = std::min({c.x->size(), c.lo->size(), c.hi->size()});
+        auto ok = [&](std::size_t k) {
+            return k < n && std::isfinite((*c.x)[k]) && std::isfinite((*c.lo)[k]) && std::isfinite((*c.hi)[k]);
+        };
+        cairo_set_source_rgba(cr, c.color.r, c.color.g, c.color.b, kBandAlpha);
+        for (std::size_t k = 0; k < n;) {
+            if (!ok(k)) {
+                ++k;
+                continue;
+            }
+            std::size_t e = k;
+            while (ok(e)) ++e;
+            cairo_move_to(cr, px((*c.x)[k]), py((*c.lo)[k]));
+            for (std::size_t j = k + 1; j < e; ++j) cairo_line_to(cr, px((*c.x)[j]), py((*c.lo)[j]));
+            for (std::size_t j = e; j-- > k;) cairo_line_to(cr, px((*c.x)[j]), py((*c.hi)[j]));
+            cairo_close_path(cr);
+            cairo_fill(cr);
+            k = e;
+        }
+    }
     cairo_set_line_width(cr, 2.0);
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
     for (const Curve& c : p.curves) {
@@ -168,7 +197,7 @@ std::string extension(const std::string& path) {
 }  // namespace
 
 void plot_series(const std::vector<Series>& runs, const std::vector<std::string>& labels, const std::string& path,
-                 const PlotOptions& o) {
+                 const PlotOptions& o, const std::vector<SeriesBand>& bands) {
     for (const Series& s : runs)
         for (const std::string& col : kPlotColumns)
             if (!s.column(col))
@@ -190,11 +219,17 @@ void plot_series(const std::vector<Series>& runs, const std::vector<std::string>
         const Series& s = runs[i];
         const Rgb c = run_color(i);
         const auto* S = s.column("S");
-        taper.curves.push_back({S, s.column("alpha_deg"), c, false});
-        taper.curves.push_back({S, s.column("beta_deg"), c, true});
-        height.curves.push_back({S, s.column("H_over_h0"), c, false});
-        peak.curves.push_back({S, s.column("peak_dx_over_h0"), c, false});
-        dil.curves.push_back({S, s.column("dilation_pct"), c, false});
+        const SeriesBand band = i < bands.size() ? bands[i] : SeriesBand{};
+        auto curve = [&](const std::string& col, bool dashed) {
+            Curve cv{S, s.column(col), c, dashed};
+            if (band.lo && band.hi) cv.lo = band.lo->column(col), cv.hi = band.hi->column(col);
+            return cv;
+        };
+        taper.curves.push_back(curve("alpha_deg", false));
+        taper.curves.push_back(curve("beta_deg", true));
+        height.curves.push_back(curve("H_over_h0", false));
+        peak.curves.push_back(curve("peak_dx_over_h0", false));
+        dil.curves.push_back(curve("dilation_pct", false));
     }
 
     // Layout: title, 2 x 2 panels, legend rows flowed under them.

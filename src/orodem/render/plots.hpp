@@ -3,6 +3,8 @@
 // panels: taper angles α (solid) and β (dashed), H/h0, peak deviation
 // (x_peak − x_S)/h0 and dilation D (%), each against S; one colour per run
 // and a legend with the runs' labels. NaN values (no wedge yet) leave gaps.
+// A run may carry a band (e.g. the lowest and highest values over packing
+// seeds, `orodem plot --seeds`), shaded in its colour behind its curves.
 // Format from the extension (.svg, .pdf, otherwise PNG); the file is written
 // atomically.
 #pragma once
@@ -22,9 +24,18 @@ struct PlotOptions {
 /// The columns the plots need (series.csv of a wedge run, SPEC §4).
 extern const std::vector<std::string> kPlotColumns;
 
-/// runs[i] is drawn with labels[i]. Throws ConfigError when a series lacks
-/// one of kPlotColumns, IoError when the file cannot be written.
+/// The band of one run: series with the run's rows, holding the lowest and
+/// the highest value of each column (seed_ensemble's lo and hi).
+struct SeriesBand {
+    const Series* lo = nullptr;
+    const Series* hi = nullptr;
+};
+
+/// runs[i] is drawn with labels[i], over bands[i] when bands has an entry
+/// for it with both series set. Throws ConfigError when a series lacks one
+/// of kPlotColumns, IoError when the file cannot be written.
 void plot_series(const std::vector<Series>& runs, const std::vector<std::string>& labels,
-                 const std::string& path, const PlotOptions& options = {});
+                 const std::string& path, const PlotOptions& options = {},
+                 const std::vector<SeriesBand>& bands = {});
 
 }  // namespace orodem

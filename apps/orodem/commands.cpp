@@ -773,7 +773,8 @@ int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& o
         if (rc != 0) return rc;
         dirs.push_back(dir);
     }
-    if (all_wedges) cmd_plot(dirs, root + "/plots.png");
+    // A sweep over the seeds is an ensemble: its mean over the seeds' band.
+    if (all_wedges) cmd_plot(dirs, root + "/plots.png", key == "run.seed" || key == "packing.seed");
     fmt::print("sweep outputs in {}/\n", root);
     return 0;
 }

@@ -45,3 +45,22 @@ TEST(Sweep, OneRunPerValueReusingTheLayerThenPlots) {
     EXPECT_FALSE(fs::exists(dir / "sw2"));
     fs::remove_all(dir);
 }
+
+TEST(Sweep, OverTheSeedsPlotsTheirMeanOverABand) {
+    // `--vary run.seed=...`: one packing per seed, and plots.png draws the
+    // ensemble (orodem plot --seeds) instead of one line per seed.
+    char tmpl[] = "/tmp/orodem-sweep-XXXXXX";
+    ASSERT_NE(mkdtemp(tmpl), nullptr);
+    const fs::path dir = tmpl;
+    write_tiny_exp1(dir);
+    std::string out;
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " sweep " + (dir / "tiny.toml").string() + " --vary run.seed=1,2 --out " +
+                  (dir / "sw").string() + " --threads 1", &out), 0)
+        << out;
+    EXPECT_NE(out.find("plot: mean of 2 seeds, band: lowest to highest: run.seed=1, run.seed=2"), std::string::npos)
+        << out;
+    EXPECT_TRUE(fs::exists(dir / "sw" / "plots.png"));
+    // Each seed settled its own layer.
+    EXPECT_NE(slurp(dir / "sw" / "run.seed=2" / "log.txt").find("settling a new packing"), std::string::npos);
+    fs::remove_all(dir);
+}

@@ -130,10 +130,13 @@ TEST(PairKernel, BitIdenticalToThePerPairLoop) {
                 for (std::size_t k = 0; k < n; ++k) reference_pair(s.p, want, k, s.W, dt, law, update);
                 // The ranges [0, a), [a, b), [b, n) with a, b of all residues mod 4.
                 ContactStore got = s.cs;
-                const PairKernelData kd{s.p.x.data(),     s.p.v.data(),        s.p.omega.data(), s.p.radius.data(),
-                                        s.p.mass.data(),  s.p.inv_mass.data(), got.i.data(),     got.j.data(),
-                                        got.shift.data(), got.bonded.data(),   got.xi.data(),    got.f.data(),
-                                        got.c.data(),     s.W,                 dt,               law,
+                std::vector<double> gn(n), gs(n);
+                pair_dashpots(law, s.p.mass.data(), s.p.inv_mass.data(), got.i.data(), got.j.data(), 0, n, gn.data(),
+                              gs.data());
+                const PairKernelData kd{s.p.x.data(),  s.p.v.data(),      s.p.omega.data(), s.p.radius.data(),
+                                        got.i.data(),  got.j.data(),      got.shift.data(), got.bonded.data(),
+                                        gn.data(),     gs.data(),         got.xi.data(),    got.f.data(),
+                                        got.c.data(),  s.W,               dt,               law,
                                         update};
                 const std::size_t a = 101 + seed, b = n / 2 + 2 * seed;
                 eval_pair_range(kd, 0, a);
@@ -155,10 +158,13 @@ TEST(PairKernel, GatherBitIdenticalToThePlainSums) {
         const LawParams law = bench_law();
         const double dt = 1e-4;
         const std::size_t n = s.p.size(), m = s.cs.size();
-        const PairKernelData kd{s.p.x.data(),      s.p.v.data(),        s.p.omega.data(), s.p.radius.data(),
-                                s.p.mass.data(),   s.p.inv_mass.data(), s.cs.i.data(),    s.cs.j.data(),
-                                s.cs.shift.data(), s.cs.bonded.data(),  s.cs.xi.data(),   s.cs.f.data(),
-                                s.cs.c.data(),     s.W,                 dt,               law,
+        std::vector<double> gn(m), gs(m);
+        pair_dashpots(law, s.p.mass.data(), s.p.inv_mass.data(), s.cs.i.data(), s.cs.j.data(), 0, m, gn.data(),
+                      gs.data());
+        const PairKernelData kd{s.p.x.data(),   s.p.v.data(),       s.p.omega.data(), s.p.radius.data(),
+                                s.cs.i.data(),  s.cs.j.data(),      s.cs.shift.data(), s.cs.bonded.data(),
+                                gn.data(),      gs.data(),          s.cs.xi.data(),   s.cs.f.data(),
+                                s.cs.c.data(),  s.W,                dt,               law,
                                 true};
         eval_pair_range(kd, 0, m);
         const Vec2 g{0.3, -9.81};

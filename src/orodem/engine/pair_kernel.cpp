@@ -8,10 +8,12 @@
 //
 // Cost model (30,000-disc pile, Zen 4, docs/benchmarks.md): about 83
 // instructions per pair, of which two thirds load the two discs' columns
-// into lanes and store the results; the arithmetic is a third. Hence four
-// lanes (wider vectors only add shuffles), contiguous loads and stores of
-// the pair columns, and the sliding branch skipped when no lane of a block
-// slides (about nine blocks in ten).
+// into lanes and store the results; the arithmetic is a third, and the
+// divider (sqrt, divisions) is the unit a block waits on. Hence four lanes
+// (wider vectors only add shuffles), contiguous loads and stores of the pair
+// columns, the sliding branch skipped when no lane of a block slides (about
+// nine blocks in ten), and the pair dashpots (m_eff) computed when the pairs
+// or the masses change, not every step (pair_dashpots).
 #include "orodem/engine/pair_kernel.hpp"
 
 #include <cmath>
@@ -30,7 +32,7 @@ constexpr std::size_t kLanes = 4;
 
 /// The inputs of kLanes pairs, one pair per lane.
 struct Block {
-    vd xix, xiy, xjx, xjy, shift, ri, rj, bonded, mi, mj, imi, imj, vix, viy, vjx, vjy, wi, wj, xi_x, xi_y;
+    vd xix, xiy, xjx, xjy, shift, ri, rj, bonded, gamma_n, gamma_s, vix, viy, vjx, vjy, wi, wj, xi_x, xi_y;
 };
 /// The outputs.
 struct Out {
@@ -67,10 +69,6 @@ template <class Index>
     b.rj = lanes([&](std::size_t l) { return d.radius[J[l]]; });
     b.wi = lanes([&](std::size_t l) { return d.omega[I[l]]; });
     b.wj = lanes([&](std::size_t l) { return d.omega[J[l]]; });
-    b.mi = lanes([&](std::size_t l) { return d.mass[I[l]]; });
-    b.mj = lanes([&](std::size_t l) { return d.mass[J[l]]; });
-    b.imi = lanes([&](std::size_t l) { return d.inv_mass[I[l]]; });
-    b.imj = lanes([&](std::size_t l) { return d.inv_mass[J[l]]; });
     // Periodic images and bonds are rare in a block (all four bytes zero): then
     // skip the byte-to-double conversions.
     std::uint32_t shift4 = 1, bonded4 = 1;
@@ -84,8 +82,12 @@ template <class Index>
         const vd a = simd::load<vd>(d.xi + K[0]), c = simd::load<vd>(d.xi + K[0] + 2);
         b.xi_x = even(a, c);
         b.xi_y = odd(a, c);
+        b.gamma_n = simd::load<vd>(d.gamma_n + K[0]);
+        b.gamma_s = simd::load<vd>(d.gamma_s + K[0]);
     } else {
         gather_vec2(d.xi, K, b.xi_x, b.xi_y);
+        b.gamma_n = lanes([&](std::size_t l) { return d.gamma_n[K[l]]; });
+        b.gamma_s = lanes([&](std::size_t l) { return d.gamma_s[K[l]]; });
     }
     return b;
 }
@@ -100,8 +102,6 @@ template <class Index>
     const vd rsum = b.ri + b.rj;
     const vm touch = bonded | ~(r2 >= rsum * rsum);
     const vd r = simd::sqrt(r2);
-    // A fixed disc is infinitely heavy: the pair's effective mass is the free disc's own.
-    const vd m_eff = b.imj == 0.0 ? b.mi : (b.imi == 0.0 ? b.mj : b.mi * b.mj / (b.mi + b.mj));
     const vd s = 1.0 / r;
     const vd nx = s * dx, ny = s * dy;
     const vd delta = rsum - r;
@@ -113,8 +113,7 @@ template <class Index>
     const vd v_n = vrx * nx + vry * ny;
     const vd vtx = (vrx - v_n * nx) + spin * ny;
     const vd vty = (vry - v_n * ny) + spin * (-nx);
-    vd gamma_n = p.damp_mass_n * m_eff;
-    if (p.damp_sqrt_n != 0.0) gamma_n += p.damp_sqrt_n * simd::sqrt(m_eff);
+    const vd gamma_n = b.gamma_n;  // from the masses, per pair (pair_dashpots)
     vd f_n = p.k_n * delta - gamma_n * v_n;
     if (p.clamp_normal) f_n = (~bonded & (f_n < 0.0)) ? vd{} : f_n;
 
@@ -128,8 +127,7 @@ template <class Index>
         const vd along = xi_x * nx + xi_y * ny;
         xi_x = xi_x - along * nx;
         xi_y = xi_y - along * ny;
-        vd gamma_s = p.damp_mass_s * m_eff;
-        if (p.damp_sqrt_s != 0.0) gamma_s += p.damp_sqrt_s * simd::sqrt(m_eff);
+        const vd gamma_s = b.gamma_s;
         ftx = (-p.k_s) * xi_x - gamma_s * vtx;
         fty = (-p.k_s) * xi_y - gamma_s * vty;
         const vd f_max = p.mu * simd::fabs(f_n) + p.cohesion;
@@ -279,6 +277,21 @@ __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 void gather_range(const GatherData& dref, std::size_t begin, std::size_t end) {
     const GatherData d = dref;
     for (std::size_t i = begin; i < end; ++i) gather_disc(d, i);
+}
+
+void pair_dashpots(const LawParams& law, const double* mass, const double* inv_mass, const std::uint32_t* i,
+                   const std::uint32_t* j, std::size_t begin, std::size_t end, double* gamma_n, double* gamma_s) {
+    for (std::size_t k = begin; k < end; ++k) {
+        const double mi = mass[i[k]], mj = mass[j[k]];
+        // A fixed disc is infinitely heavy: the pair's effective mass is the free disc's own.
+        const double m_eff = inv_mass[j[k]] == 0.0 ? mi : (inv_mass[i[k]] == 0.0 ? mj : mi * mj / (mi + mj));
+        double gn = law.damp_mass_n * m_eff;
+        if (law.damp_sqrt_n != 0.0) gn += law.damp_sqrt_n * std::sqrt(m_eff);
+        double gs = law.damp_mass_s * m_eff;
+        if (law.damp_sqrt_s != 0.0) gs += law.damp_sqrt_s * std::sqrt(m_eff);
+        gamma_n[k] = gn;
+        gamma_s[k] = gs;
+    }
 }
 
 // Built for the baseline ISA and, chosen at load time by the CPU, for

@@ -37,13 +37,13 @@ struct PairKernelData {
     const Vec2* v;
     const double* omega;
     const double* radius;
-    const double* mass;
-    const double* inv_mass;
     // pairs
     const std::uint32_t* i;
     const std::uint32_t* j;
     const std::int8_t* shift;
     const std::uint8_t* bonded;
+    const double* gamma_n;  // normal dashpot of the pair [N s/m] (pair_dashpots)
+    const double* gamma_s;  // tangential dashpot of the pair [N s/m]
     Vec2* xi;
     Vec2* f;
     double* c;
@@ -52,6 +52,16 @@ struct PairKernelData {
     LawParams law;
     bool update_history;
 };
+
+/// The dashpots of pairs [begin, end) from the discs' masses, as eval_contact
+/// computes them: γ = damp_mass m_eff (+ damp_sqrt sqrt(m_eff) where damp_sqrt
+/// is not 0), m_eff = m_i m_j / (m_i + m_j), or the free disc's mass when the
+/// other one is fixed or asleep (inverse mass 0). They change only when the
+/// pairs or an inverse mass do, so the engine computes them then instead of
+/// in every step (a division and, with restitution damping, a square root
+/// per pair less in phase A).
+void pair_dashpots(const LawParams& law, const double* mass, const double* inv_mass, const std::uint32_t* i,
+                   const std::uint32_t* j, std::size_t begin, std::size_t end, double* gamma_n, double* gamma_s);
 
 /// Evaluates pairs [begin, end): f[k], c[k] and (if update_history) ξ[k].
 void eval_pair_range(const PairKernelData& d, std::size_t begin, std::size_t end);

@@ -75,6 +75,7 @@ void Simulation::rebuild_pairs() {
     last_rebuild_step_ = step_count;
     apply_sleep(x_lo, x_hi);
     index_wall_discs();
+    dashpots_stale_ = true;
 }
 
 void Simulation::index_wall_discs() {
@@ -114,13 +115,32 @@ void pairs_then_gather(const PairKernelData& kd, const GatherData& gd, std::size
 
 }  // namespace
 
+void Simulation::refresh_dashpots() {
+    const ParticleStore& p = particles;
+    const ContactStore& cs = contacts;
+    const std::size_t npairs = cs.size();
+    pair_gamma_n_.resize(npairs);  // allocates only when the pair list outgrows every earlier one
+    pair_gamma_s_.resize(npairs);
+#pragma omp parallel if(static_cast<long long>(npairs) >= kParallelMin)
+    {
+        const auto [b, e] = thread_range(npairs, 64);
+        if (b < e)
+            pair_dashpots(params.law, p.mass.data(), p.inv_mass.data(), cs.i.data(), cs.j.data(), b, e,
+                          pair_gamma_n_.data(), pair_gamma_s_.data());
+    }
+    dashpots_stale_ = false;
+    dashpots_epoch_ = p.inertia_epoch;
+}
+
 PairKernelData Simulation::pair_kernel_data(bool update_history) {
     ParticleStore& p = particles;
     ContactStore& cs = contacts;
-    return {p.x.data(),      p.v.data(),        p.omega.data(), p.radius.data(), p.mass.data(),
-            p.inv_mass.data(), cs.i.data(),     cs.j.data(),    cs.shift.data(), cs.bonded.data(),
-            cs.xi.data(),    cs.f.data(),       cs.c.data(),    params.period_x, params.dt,
-            params.law,      update_history};
+    if (dashpots_stale_ || dashpots_epoch_ != p.inertia_epoch || pair_gamma_n_.size() != cs.size())
+        refresh_dashpots();
+    return {p.x.data(),      p.v.data(),           p.omega.data(),        p.radius.data(), cs.i.data(),
+            cs.j.data(),     cs.shift.data(),      cs.bonded.data(),      pair_gamma_n_.data(),
+            pair_gamma_s_.data(), cs.xi.data(),    cs.f.data(),           cs.c.data(),     params.period_x,
+            params.dt,       params.law,           update_history};
 }
 
 GatherData Simulation::gather_data(bool update_history, bool kick) {

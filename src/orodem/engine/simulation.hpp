@@ -187,6 +187,13 @@ private:
     bool defer_drift_ = false;        // set by advance() while it steps
     void set_drift_range();           // from the awake and pair ranges
     void catch_up_drift();            // x += lag dt v, θ += lag dt ω outside the drift range
+    // Per-pair dashpots γ_n, γ_s [N s/m] (pair_dashpots), valid for the pair
+    // list of the last rebuild and the inverse masses of inertia_epoch
+    // dashpots_epoch_; refreshed by pair_kernel_data() when either changed.
+    std::vector<double> pair_gamma_n_, pair_gamma_s_;
+    bool dashpots_stale_ = true;       // set by a rebuild or a restore
+    std::uint64_t dashpots_epoch_ = 0;
+    void refresh_dashpots();
     std::vector<std::vector<std::uint32_t>> wall_discs_;  // per wall: slots with a candidate contact
     void index_wall_discs();  // wall_discs_ from wall_contacts (after a rebuild or a restore)
     double kicked_at_ = 0.0;          // omp_get_wtime() when the drift ended (phase timers)

@@ -94,6 +94,7 @@ void Simulation::apply_sleep(double x_lo, double x_hi) {
         const bool asleep = (p.flags[s] & kFlagAsleep) != 0;
         if (sleep && !asleep && !(p.flags[s] & kFlagFixed)) {
             p.flags[s] |= kFlagAsleep;
+            ++p.inertia_epoch;
             p.inv_mass[s] = 0.0;
             p.inv_inertia[s] = 0.0;
             p.v[s] = p.x[s].x < params.sleep.x_split ? params.sleep.u_left : params.sleep.u_right;

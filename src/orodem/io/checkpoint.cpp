@@ -66,6 +66,7 @@ struct SimulationAccess {
         s.pairs_end_ = v.pairs_end;
         s.last_rebuild_step_ = v.last_rebuild_step;
         s.index_wall_discs();
+        s.dashpots_stale_ = true;  // pairs and inverse masses restored: the per-pair dashpots follow
         s.set_drift_range();  // checkpoints are written between advance() calls: no drift lag
     }
 };

@@ -59,8 +59,13 @@ struct ParticleStore {
             [&](auto& col) { fn(static_cast<const std::remove_reference_t<decltype(col)>&>(col)); });
     }
 
+    /// Counts the changes of an inverse mass after add() (fix, set_free_inertia,
+    /// sleeping): the engine's per-pair dashpots (m_eff) are refreshed when it moves.
+    std::uint64_t inertia_epoch = 0;
+
     /// Holds disc `slot` fixed in space from now on (zero velocity, infinite mass).
     void fix(std::size_t slot) {
+        ++inertia_epoch;
         flags[slot] |= kFlagFixed;
         inv_mass[slot] = 0.0;
         inv_inertia[slot] = 0.0;
@@ -70,6 +75,7 @@ struct ParticleStore {
 
     /// The integrator's inverse mass and inertia of a free disc (as add() sets them).
     void set_free_inertia(std::size_t slot) {
+        ++inertia_epoch;
         inv_mass[slot] = 1.0 / mass[slot];
         inv_inertia[slot] = 2.0 / (mass[slot] * radius[slot] * radius[slot]);
     }

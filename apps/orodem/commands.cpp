@@ -468,13 +468,14 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
     // The paper's plates are infinite slabs ([40]): once the raised surface
     // runs back to within h0 of the trailing wall, the wall pushes the
     // deformed plate and the toe, α and D measure the whole plate. Said once
-    // per process, on stderr and in log.txt.
+    // per process, on stderr and in log.txt (never at S = 0: plate_at_trailing_wall).
     bool wall_warned = false;
     auto output = [&]() {
         check();
         const WedgeMeasures m = write_row();
         draw();
-        if (const double wall_x = sim.walls[kWallProEnd].a.x; !wall_warned && m.toe_pro_x - wall_x < h0) {
+        if (const double wall_x = sim.walls[kWallProEnd].a.x;
+            !wall_warned && plate_at_trailing_wall(m, wall_x, h0, c.wedge.v * sim.time)) {
             const std::string msg = fmt::format(
                 "the prowedge reaches the trailing wall at S = {:.3f} (toe at {:.2f} h0, wall at {:.2f} h0 from the "
                 "S point): from here the wall pushes the deformed plate, and the toe, alpha and D measure the whole "

@@ -289,6 +289,7 @@ TEST_F(PlotRender, ValidateFindingsScriptMeasuresRunsAndTheSpreadOverSeeds) {
         write(dir / "config.toml", "[wedge]\ns_max = 6.0\npro_margin = 10.0\n");
         std::ostringstream s;
         s << "S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,toe_pro_x_over_h0,toe_retro_x_over_h0\n";
+        s << "0,0,nan,nan,nan,nan,-15.5,nan\n";  // S = 0: a roughness bump by the wall is no wedge
         for (int k = 1; k <= 24; ++k) {
             const double S = 0.25 * k;
             const double toe = S >= wall_from ? -(16.0 - S) + 0.5 : -5.0;  // trailing wall at -(16 - S) h0

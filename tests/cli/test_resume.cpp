@@ -267,6 +267,8 @@ TEST_F(Resume, APlateDeformedBackToTheTrailingWallIsReportedOnce) {
     ASSERT_NE(at, std::string::npos) << ref_log;
     EXPECT_EQ(at, ref_log.rfind(said)) << "said more than once: " << ref_log;
     EXPECT_NE(ref_log.find("raise wedge.pro_margin (now 3 h0)"), std::string::npos) << ref_log;
+    // Never at S = 0, where no wedge has grown and the toe is a roughness bump's.
+    EXPECT_NE(ref_log.substr(at + said.size(), 5), "0.000") << ref_log;
 
     const fs::path run = root_ / "W";
     const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1"}, root_ / "W");

@@ -296,3 +296,29 @@ TEST(WedgeProfile, CriticalWedgeAlphaMeasuredAwayFromTheBackstop) {
     const WedgeMeasures without = measure_wedge(p, pp, 1.0);
     EXPECT_GT(std::fabs(without.alpha_deg - 10.0), 0.5);
 }
+
+TEST(WedgeProfile, PlateAtTheTrailingWallOnlyOnceTheWedgeHasGrown) {
+    // A flat layer 20 m long with one bump by its trailing end (x = -9.5 m,
+    // wall at -10 m): at shortening 0 the bump is the "peak" and its toe lies
+    // within h0 of the wall, which is no wedge at the wall; once shortened,
+    // a toe within h0 of the wall is one, and a toe farther away is not.
+    ParticleStore p;
+    for (int k = 0; k < 40; ++k) p.add({-10.0 + 0.25 + 0.5 * k, 0.25}, 0.25, 2500.0);
+    p.add({-9.5, 0.75}, 0.25, 2500.0);
+    ProfileParams pp;
+    pp.column = 0.5;
+    pp.x_min = -10.0;
+    pp.x_max = 10.0;
+    pp.x_s = 0.0;
+    pp.h0 = 2.0;
+    pp.y_mean = 0.25;
+    pp.toe_threshold = 0.1;
+    const WedgeMeasures m = measure_wedge(p, pp, 0.0);
+    ASSERT_LT(m.toe_pro_x - (-10.0), pp.h0) << m.toe_pro_x;  // the bump's toe, by the wall
+    EXPECT_FALSE(plate_at_trailing_wall(m, -10.0, pp.h0, 0.0));
+    EXPECT_TRUE(plate_at_trailing_wall(m, -10.0, pp.h0, 0.5));
+    WedgeMeasures far = m;
+    far.toe_pro_x = -7.0;
+    EXPECT_FALSE(plate_at_trailing_wall(far, -10.0, pp.h0, 0.5));
+}
+

@@ -132,4 +132,8 @@ WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, dou
     return m;
 }
 
+bool plate_at_trailing_wall(const WedgeMeasures& m, double wall_x, double h0, double shortening) {
+    return shortening > 0.0 && m.toe_pro_x - wall_x < h0;
+}
+
 }  // namespace orodem

@@ -53,6 +53,13 @@ double mean_surface(const ParticleStore& p, double x0, double x1, double column)
 /// shortening: the convergence v t so far [m].
 WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, double shortening);
 
+/// Whether the raised surface has run back to within h0 of the trailing wall
+/// at x = wall_x (the incoming plate is then too short for the run: the wall
+/// pushes the deformed plate). Never at shortening 0, where no wedge has
+/// grown and the toes are those of the flat layer's highest roughness bump,
+/// which may lie anywhere, by the trailing wall too.
+bool plate_at_trailing_wall(const WedgeMeasures& m, double wall_x, double h0, double shortening);
+
 /// Least-squares slope of y on x.
 double fit_slope(const std::vector<double>& x, const std::vector<double>& y);
 

@@ -775,7 +775,7 @@ int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& o
         dirs.push_back(dir);
     }
     // A sweep over the seeds is an ensemble: its mean over the seeds' band.
-    if (all_wedges) cmd_plot(dirs, root + "/plots.png", key == "run.seed" || key == "packing.seed");
+    if (all_wedges) cmd_plot(dirs, root + "/plots.png", is_seed_key(key));
     fmt::print("sweep outputs in {}/\n", root);
     return 0;
 }

@@ -15,11 +15,21 @@
 namespace fs = std::filesystem;
 using namespace cli;
 
-TEST(Sweep, OneRunPerValueReusingTheLayerThenPlots) {
+namespace {
+
+/// A new temporary folder holding tiny.toml (write_tiny_exp1); empty on failure.
+fs::path tiny_dir() {
     char tmpl[] = "/tmp/orodem-sweep-XXXXXX";
-    ASSERT_NE(mkdtemp(tmpl), nullptr);
-    const fs::path dir = tmpl;
-    write_tiny_exp1(dir);
+    if (!mkdtemp(tmpl)) return {};
+    write_tiny_exp1(tmpl);
+    return tmpl;
+}
+
+}  // namespace
+
+TEST(Sweep, OneRunPerValueReusingTheLayerThenPlots) {
+    const fs::path dir = tiny_dir();
+    ASSERT_FALSE(dir.empty());
     std::string out;
     ASSERT_EQ(run(std::string(ORODEM_EXE) + " sweep " + (dir / "tiny.toml").string() +
                   " --vary wedge.mu_bp=0.1,0.5 --out " + (dir / "sw").string() + " --threads 1", &out), 0)
@@ -49,10 +59,8 @@ TEST(Sweep, OneRunPerValueReusingTheLayerThenPlots) {
 TEST(Sweep, OverTheSeedsPlotsTheirMeanOverABand) {
     // `--vary run.seed=...`: one packing per seed, and plots.png draws the
     // ensemble (orodem plot --seeds) instead of one line per seed.
-    char tmpl[] = "/tmp/orodem-sweep-XXXXXX";
-    ASSERT_NE(mkdtemp(tmpl), nullptr);
-    const fs::path dir = tmpl;
-    write_tiny_exp1(dir);
+    const fs::path dir = tiny_dir();
+    ASSERT_FALSE(dir.empty());
     std::string out;
     ASSERT_EQ(run(std::string(ORODEM_EXE) + " sweep " + (dir / "tiny.toml").string() + " --vary run.seed=1,2 --out " +
                   (dir / "sw").string() + " --threads 1", &out), 0)

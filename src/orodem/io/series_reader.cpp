@@ -194,6 +194,8 @@ std::string csv_first_fields(const std::string& line, std::size_t n) {
     return line.substr(0, at - 1);
 }
 
+bool is_seed_key(const std::string& key) { return kSeedKeys.count(key) > 0; }
+
 std::vector<std::size_t> seed_groups(const std::vector<std::string>& config_texts,
                                      const std::vector<std::string>& names,
                                      const std::vector<std::string>& sources) {

@@ -46,6 +46,10 @@ std::vector<std::string> legend_labels(const std::vector<std::string>& config_te
                                        const std::vector<std::string>& names,
                                        const std::vector<std::string>& sources, bool ignore_seeds = false);
 
+/// Whether `key` (e.g. "run.seed") changes only the random packing: run.seed
+/// or packing.seed, the keys seed_groups ignores.
+bool is_seed_key(const std::string& key);
+
 /// Groups of runs that differ only in their seeds: group[i] is the index of
 /// run i's group, groups numbered in order of first appearance. Two runs are
 /// in one group when their resolved configs agree on every key except

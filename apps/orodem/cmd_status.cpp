@@ -20,6 +20,7 @@
 #include "orodem/io/checkpoint.hpp"
 #include "orodem/io/config.hpp"
 #include "orodem/io/files.hpp"
+#include "orodem/io/sweep_manifest.hpp"
 
 namespace orodem {
 
@@ -39,6 +40,9 @@ bool ends_a_piece(const std::string& line) {
     return false;
 }
 
+/// A line that starts or ends a piece (what last_run_event returns).
+bool is_event(const std::string& line) { return ends_a_piece(line) || starts_with(line, "resumed by"); }
+
 /// The number after `key` in line (e.g. "dt = 0.00018 s" for key "dt = "); NaN when absent.
 double number_after(const std::string& line, const std::string& key) {
     const std::size_t at = line.find(key);
@@ -50,13 +54,23 @@ double number_after(const std::string& line, const std::string& key) {
     }
 }
 
-int status_of_run(const std::string& dir) {
+/// Prints the status of the run in dir; returns true when it is finished. A
+/// sweep's member (in_sweep) is continued with the sweep, not on its own.
+bool status_of_run(const std::string& dir, const std::string& in_sweep = "") {
     require_run_dir(dir);
     const Config c = load_config(dir + "/config.toml");
     if (!is_wedge(c))
         throw ConfigError(fmt::format("'{}' is a run of run.experiment = \"{}\"; orodem status reads the wedge "
                                       "experiments' run directories",
                                       dir, c.run.experiment));
+    const std::string continue_with = in_sweep.empty() ? "continue with: orodem resume " + dir
+                                                       : "continue the sweep with: orodem resume " + in_sweep;
+    if (!fs::exists(dir + "/log.txt")) {
+        // A sweep writes every member's config.toml before the first one runs.
+        fmt::print("run: {} ({}, S_max = {:g})\nstate: not started yet\n{}\n", dir, c.run.experiment, c.wedge.s_max,
+                   continue_with);
+        return false;
+    }
     // log.txt: the timestep, the last output line (S and rate) and the last event.
     // The wall time of the pieces whose end line gives it ("... 2482.3 s wall").
     std::string dt_line, last_output, last_event;
@@ -68,7 +82,7 @@ int status_of_run(const std::string& dir) {
             if (starts_with(line, "dt = ")) dt_line = line;
             if (starts_with(line, "S = ")) last_output = line;
             if (starts_with(line, "orodem ") || starts_with(line, "resumed by")) ++pieces;
-            if (ends_a_piece(line) || starts_with(line, "resumed by")) last_event = line;
+            if (is_event(line)) last_event = line;
             if (const std::size_t at = line.find(" s wall"); ends_a_piece(line) && at != std::string::npos) {
                 const std::size_t sp = line.rfind(' ', at - 1);  // the number is the word before " s wall"
                 const double secs = sp == std::string::npos ? std::nan("") : number_after(line.substr(sp + 1), "");
@@ -134,9 +148,9 @@ int status_of_run(const std::string& dir) {
         if (std::isfinite(rate) && rate > 0.0 && std::isfinite(total) && std::isfinite(last_step))
             fmt::print("rate: {:.0f} steps/s at the last output; about {} left at that rate\n", rate,
                        duration_text((total - last_step) / rate));
-        fmt::print("continue with: orodem resume {}\n", dir);
+        fmt::print("{}\n", continue_with);
     }
-    return 0;
+    return finished;
 }
 
 }  // namespace
@@ -147,21 +161,47 @@ std::string duration_text(double secs) {
     return fmt::format("{:.1f} h", secs / 3600.0);
 }
 
+std::string last_run_event(const std::string& dir) {
+    std::error_code ec;
+    if (!fs::exists(dir + "/log.txt", ec)) return "";
+    std::string last;
+    std::istringstream log(read_file(dir + "/log.txt"));
+    for (std::string line; std::getline(log, line);)
+        if (is_event(line)) last = line;
+    return last;
+}
+
+bool last_run_event_is(const std::string& dir, const char* prefix) {
+    return starts_with(last_run_event(dir), prefix);
+}
+
 int cmd_status(const std::string& dir) {
-    // A sweep's folder (orodem sweep): the status of each member run.
+    // A sweep's folder (orodem sweep): the status of each member run, in the
+    // sweep's order when it has its manifest (sweep.toml).
     std::error_code ec;
     if (fs::is_directory(dir, ec) && !fs::exists(fs::path(dir) / "config.toml", ec)) {
         std::vector<std::string> members;
-        for (const auto& e : fs::directory_iterator(dir, ec))
-            if (e.is_directory() && fs::exists(e.path() / "config.toml")) members.push_back(e.path().string());
-        std::sort(members.begin(), members.end());
+        const bool manifest = fs::exists(sweep_manifest_path(dir), ec);
+        if (manifest) {
+            const SweepManifest m = read_sweep_manifest(dir);
+            for (const auto& v : m.values) members.push_back(sweep_member_dir(dir, m, v));
+        } else {
+            for (const auto& e : fs::directory_iterator(dir, ec))
+                if (e.is_directory() && fs::exists(e.path() / "config.toml")) members.push_back(e.path().string());
+            std::sort(members.begin(), members.end());
+        }
+        int finished = 0;
         for (std::size_t k = 0; k < members.size(); ++k) {
             if (k) fmt::print("\n");
-            status_of_run(members[k]);
+            finished += status_of_run(members[k], manifest ? dir : "") ? 1 : 0;
         }
+        if (manifest)
+            fmt::print("\nsweep: {} of {} runs finished{}\n", finished, members.size(),
+                       finished < static_cast<int>(members.size()) ? "; continue it with: orodem resume " + dir : "");
         if (!members.empty()) return 0;
     }
-    return status_of_run(dir);
+    status_of_run(dir);
+    return 0;
 }
 
 }  // namespace orodem

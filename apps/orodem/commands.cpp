@@ -44,16 +44,14 @@
 namespace fs = std::filesystem;
 namespace orodem {
 
-namespace {
-
-
-
 Config load(const CommonArgs& a) {
     std::vector<Override> ov;
     for (const auto& s : a.sets) ov.push_back(parse_override(s));
     if (a.threads >= 0) ov.push_back({"run.threads", std::to_string(a.threads)});
     return load_config(a.config, ov);
 }
+
+namespace {
 
 /// "integrate 6.1%, rebuild 0.4%, ..." with the seconds per phase of step().
 std::string phase_breakdown(const PhaseTimes& t) {
@@ -69,8 +67,15 @@ std::string phase_breakdown(const PhaseTimes& t) {
     return s;
 }
 
+}  // namespace
+
 void set_threads(const Config& c) {
     if (c.run.threads > 0) omp_set_num_threads(c.run.threads);
+}
+
+void check_runnable(const Config& c) {
+    timestep_for(c);
+    if (is_wedge(c)) check_belt_speed(c);
 }
 
 /// A new run directory: `out` if given (must be absent or empty), else
@@ -89,8 +94,6 @@ std::string choose_run_dir(const std::string& out, const std::string& config_pat
         if (usable(p)) return p.string();
     }
 }
-
-}  // namespace
 
 int cmd_check(const CommonArgs& a) {
     const Config c = load(a);
@@ -631,6 +634,8 @@ void truncate_to(const std::string& path, std::uint64_t bytes) {
     if (::truncate(path.c_str(), static_cast<off_t>(bytes)) != 0) throw_io_error("cannot truncate", path);
 }
 
+}  // namespace
+
 int resume_run(const Config& c, const std::string& dir) {
     if (dir.empty())
         throw ConfigError("--resume needs --out DIR: the run directory to continue (it holds config.toml and checkpoint/)");
@@ -672,19 +677,22 @@ int resume_run(const Config& c, const std::string& dir) {
     return rc;
 }
 
-}  // namespace
 
 int cmd_run(const CommonArgs& a, const std::string& out_arg, bool resume) {
     const Config c = load(a);
     if (is_calibration(c))
         throw ConfigError(fmt::format("{}: run.experiment = \"{}\" is a calibration experiment: run it with orodem "
                                       "calibrate {}", c.path, c.run.experiment, c.path));
-    const TimestepInfo t = timestep_for(c);
-    if (is_wedge(c)) check_belt_speed(c);
+    check_runnable(c);
     set_threads(c);
     if (resume) return resume_run(c, out_arg);
     const std::string dir = choose_run_dir(out_arg, c.path);
     make_dirs(dir);
+    return start_run_in(c, dir);
+}
+
+int start_run_in(const Config& c, const std::string& dir) {
+    const TimestepInfo t = timestep_for(c);
     write_file_atomic(dir + "/config.toml", to_toml(c));
     LineFile log(dir + "/log.txt");
     log.line(fmt::format("orodem {} run of {} ({}) with {} threads", ORODEM_VERSION, c.path, c.run.experiment,
@@ -719,65 +727,6 @@ int cmd_run(const CommonArgs& a, const std::string& out_arg, bool resume) {
         return 0;
     }
     return start_wedge(c, dir, log);
-}
-
-namespace {
-
-/// Splits "key=v1,v2,..." into the key and its values.
-std::pair<std::string, std::vector<std::string>> parse_vary(const std::string& text) {
-    const auto eq = text.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
-        throw ConfigError(fmt::format("--vary '{}': expected key=v1,v2,..., e.g. --vary wedge.mu_bp=0.1,0.2,0.3", text));
-    std::vector<std::string> values;
-    std::string rest = text.substr(eq + 1);
-    for (std::size_t pos = 0;;) {
-        const auto comma = rest.find(',', pos);
-        values.push_back(rest.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
-        if (comma == std::string::npos) break;
-        pos = comma + 1;
-    }
-    for (const auto& v : values)
-        if (v.empty()) throw ConfigError(fmt::format("--vary '{}': empty value in the list", text));
-    return {text.substr(0, eq), values};
-}
-
-}  // namespace
-
-int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg) {
-    const auto [key, values] = parse_vary(vary);
-    // Validate every member of the sweep before running any.
-    bool all_wedges = true;  // then the overlay plots at the end
-    for (const auto& v : values) {
-        CommonArgs one = a;
-        one.sets.push_back(key + "=" + v);
-        const Config c = load(one);
-        if (is_calibration(c))
-            throw ConfigError(fmt::format("{}: run.experiment = \"{}\" is a calibration experiment, which sweeps "
-                                          "its own [calibrate] lists: run it with orodem calibrate", c.path,
-                                          c.run.experiment));
-        timestep_for(c);
-        if (is_wedge(c)) check_belt_speed(c);
-        all_wedges = all_wedges && is_wedge(c);
-    }
-    const std::string stem = fs::path(a.config).stem().string();
-    const std::string root = out_arg.empty() ? choose_run_dir("", stem + "-sweep") : out_arg;
-    if (!out_arg.empty() && fs::exists(root) && !fs::is_empty(root))
-        throw ConfigError(fmt::format("--out {}: directory exists and is not empty; choose a new directory", root));
-    make_dirs(root);
-    std::vector<std::string> dirs;
-    for (const auto& v : values) {
-        CommonArgs one = a;
-        one.sets.push_back(key + "=" + v);
-        const std::string dir = fmt::format("{}/{}={}", root, key, v);
-        fmt::print("sweep: {} = {} -> {}\n", key, v, dir);
-        const int rc = cmd_run(one, dir);
-        if (rc != 0) return rc;
-        dirs.push_back(dir);
-    }
-    // A sweep over the seeds is an ensemble: its mean over the seeds' band.
-    if (all_wedges) cmd_plot(dirs, root + "/plots.png", is_seed_key(key));
-    fmt::print("sweep outputs in {}/\n", root);
-    return 0;
 }
 
 /// The canonical benchmark: run `steps` steps of the settled pile, check the

@@ -15,10 +15,34 @@ struct CommonArgs {
     int threads = -1;  // -1: from the config
 };
 
+struct Config;
+
 int cmd_check(const CommonArgs& a);
 /// resume: continue the run in out_arg from its newest usable checkpoint.
 int cmd_run(const CommonArgs& a, const std::string& out_arg, bool resume = false);
+
+/// The config of a, its --set and --threads applied (load_config: ConfigError if bad).
+Config load(const CommonArgs& a);
+/// Throws ConfigError unless c can run: a stable timestep, a belt slower than eq. 6.
+void check_runnable(const Config& c);
+/// Applies run.threads (0: all cores).
+void set_threads(const Config& c);
+/// A new run directory: `out` if given (absent or empty, else ConfigError), else
+/// runs/<config stem>, runs/<stem>-2, ... whichever is free first.
+std::string choose_run_dir(const std::string& out, const std::string& config_path);
+/// Runs c from the beginning in dir (which exists: empty, or holding only its config.toml).
+int start_run_in(const Config& c, const std::string& dir);
+/// Continues the wedge run in dir from its newest usable checkpoint (from the
+/// beginning when it has none); c must be its config.
+int resume_run(const Config& c, const std::string& dir);
+
+/// orodem sweep (cmd_sweep.cpp): one run per value of a key into DIR/<key>=<value>/,
+/// recorded in DIR/sweep.toml, then the overlay plots.
 int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg);
+/// orodem resume DIR: a sweep folder (with sweep.toml) continues its members in
+/// order (finished ones kept, interrupted ones resumed, the rest started);
+/// any other DIR is one run, resumed. threads < 0: each run's own run.threads.
+int cmd_resume(const std::string& dir, int threads);
 int cmd_bench_pile(const std::string& pile, std::uint64_t steps, int threads);
 
 /// orodem plot (cmd_plot.cpp): the S plots of one or more runs into out
@@ -38,12 +62,17 @@ int cmd_taper(double phi_deg, double phi_b_deg, double mu_b, double beta_deg);
 /// orodem calibrate (cmd_calibrate.cpp): the calibration experiment of CONFIG into a new run
 /// directory with report.md; check_calibration: what orodem check prints for one.
 int cmd_calibrate(const CommonArgs& a, const std::string& out_arg);
-struct Config;
 int check_calibration(const Config& c);
 
 /// orodem status (cmd_status.cpp): how far a wedge run got, how its last
 /// piece ended, its newest checkpoint, the time left and how to continue it.
 int cmd_status(const std::string& run_dir);
+/// The last line of dir/log.txt that starts or ends a piece of the run
+/// ("finished: ...", "interrupted by ...", "UNSTABLE: ...", "resumed by ...");
+/// "" when there is none (not started, or killed before any).
+std::string last_run_event(const std::string& dir);
+/// True when last_run_event(dir) starts with prefix.
+bool last_run_event_is(const std::string& dir, const char* prefix);
 /// "42 s", "17 min" or "3.5 h".
 std::string duration_text(double secs);
 

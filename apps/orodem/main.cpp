@@ -31,8 +31,10 @@ int main(int argc, char** argv) {
     CommonArgs resume_args;
     std::string resume_dir;
     auto* resume_cmd = app.add_subcommand("resume", "Continue the run in RUN_DIR from its newest usable checkpoint "
-                                                    "(same as: run RUN_DIR/config.toml --out RUN_DIR --resume)");
-    resume_cmd->add_option("run_dir", resume_dir, "Run directory")->required();
+                                                    "(same as: run RUN_DIR/config.toml --out RUN_DIR --resume), or "
+                                                    "the sweep in a sweep's folder: its finished runs kept, the "
+                                                    "interrupted one continued, the rest started");
+    resume_cmd->add_option("run_dir", resume_dir, "Run directory, or a sweep's folder")->required();
     resume_cmd->add_option("--threads", resume_args.threads, "OpenMP threads (0 = all cores)");
 
     std::string status_dir;
@@ -46,7 +48,8 @@ int main(int argc, char** argv) {
 
     CommonArgs sweep_args;
     std::string sweep_vary, sweep_out;
-    auto* sweep = app.add_subcommand("sweep", "One run per value of a config key, into DIR/<key>=<value>/");
+    auto* sweep = app.add_subcommand("sweep", "One run per value of a config key, into DIR/<key>=<value>/, then the "
+                                              "overlay plots; an interrupted sweep continues with orodem resume DIR");
     sweep->add_option("config", sweep_args.config, "TOML config file")->required();
     sweep->add_option("--vary", sweep_vary, "key=v1,v2,..., e.g. wedge.mu_bp=0.1,0.2,0.3")->required();
     sweep->add_option("--out", sweep_out, "Output directory (new or empty); default runs/<config name>-sweep");
@@ -117,10 +120,7 @@ int main(int argc, char** argv) {
     }
     try {
         if (*run) return cmd_run(run_args, out, resume);
-        if (*resume_cmd) {
-            resume_args.config = resume_dir + "/config.toml";
-            return cmd_run(resume_args, resume_dir, true);
-        }
+        if (*resume_cmd) return cmd_resume(resume_dir, resume_args.threads);
         if (*status) return cmd_status(status_dir);
         if (*check) return cmd_check(check_args);
         if (*sweep) return cmd_sweep(sweep_args, sweep_vary, sweep_out);

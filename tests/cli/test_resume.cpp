@@ -6,6 +6,7 @@
 // a full disk gives exit 4 and never a corrupt checkpoint.
 #include <gtest/gtest.h>
 
+#include "cli/checkpoint_util.hpp"
 #include "cli/cli_util.hpp"
 #include <signal.h>
 #include <spawn.h>
@@ -32,26 +33,6 @@ namespace fs = std::filesystem;
 using namespace cli;
 
 namespace {
-
-/// True once dir/checkpoint holds a checkpoint of a step after 0.
-bool has_later_checkpoint(const fs::path& run) {
-    for (const auto& [step, path] : orodem::list_checkpoints((run / "checkpoint").string()))
-        if (step > 0) return true;
-    return false;
-}
-
-/// Waits (up to 60 s) for a checkpoint after step 0, then sends sig(s).
-bool signal_after_checkpoint(const Proc& p, const fs::path& run, std::initializer_list<int> sigs) {
-    const auto t0 = std::chrono::steady_clock::now();
-    while (!has_later_checkpoint(run)) {
-        if (std::chrono::steady_clock::now() - t0 > std::chrono::seconds(60)) return false;
-        int st = 0;
-        if (waitpid(p.pid, &st, WNOHANG) == p.pid) return false;  // ended before any checkpoint
-        std::this_thread::sleep_for(std::chrono::microseconds(500));
-    }
-    for (int s : sigs) kill(p.pid, s);
-    return true;
-}
 
 class Resume : public ::testing::Test {
 protected:

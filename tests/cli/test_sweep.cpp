@@ -1,7 +1,9 @@
 // `orodem sweep`: one run per value into DIR/<key>=<value>/, the settled
-// layer settled once and reused, and the overlay plot at the end.
+// layer settled once and reused, and the overlay plot at the end; an
+// interrupted sweep continued by `orodem resume DIR` ends as an uninterrupted one.
 #include <gtest/gtest.h>
 
+#include "cli/checkpoint_util.hpp"
 #include "cli/cli_util.hpp"
 #include <stdlib.h>
 #include <sys/wait.h>
@@ -11,6 +13,10 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+
+#include "orodem/core/error.hpp"
+#include "orodem/io/files.hpp"
+#include "orodem/io/sweep_manifest.hpp"
 
 namespace fs = std::filesystem;
 using namespace cli;
@@ -70,5 +76,97 @@ TEST(Sweep, OverTheSeedsPlotsTheirMeanOverABand) {
     EXPECT_TRUE(fs::exists(dir / "sw" / "plots.png"));
     // Each seed settled its own layer.
     EXPECT_NE(slurp(dir / "sw" / "run.seed=2" / "log.txt").find("settling a new packing"), std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST(Sweep, InterruptedItContinuesWithResumeAndEndsAsAnUninterruptedSweep) {
+    const fs::path dir = tiny_dir();
+    ASSERT_FALSE(dir.empty());
+    const std::string tiny = (dir / "tiny.toml").string(), sw = (dir / "sw").string();
+    std::string out;
+    // Five outputs (S = 0 to 0.5): enough pictures for expect_same_outputs.
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " sweep " + tiny + " --vary wedge.mu_bp=0.1,0.5 --out " +
+                  (dir / "ref").string() + " --threads 1 --set wedge.output_ds=0.125", &out), 0)
+        << out;
+
+    // SIGINT while the first member runs: it checkpoints, the second has not started.
+    const Proc p = start({"sweep", tiny, "--vary", "wedge.mu_bp=0.1,0.5", "--out", sw, "--threads", "1", "--set",
+                          "wedge.output_ds=0.125"},
+                         dir / "sw");
+    ASSERT_TRUE(signal_after_checkpoint(p, dir / "sw" / "wedge.mu_bp=0.1", {SIGINT})) << slurp(p.err);
+    ASSERT_EQ(wait_for(p), 130) << slurp(p.err);
+    EXPECT_HAS(slurp(p.err), "the sweep stopped at wedge.mu_bp = 0.1; continue it with: orodem resume " + sw);
+    EXPECT_EQ(names_in(dir / "sw" / "wedge.mu_bp=0.5"), std::vector<std::string>{"config.toml"});
+    EXPECT_TRUE(fs::exists(dir / "sw" / "sweep.toml"));
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " status " + sw, &out), 0) << out;
+    EXPECT_HAS(out, "state: interrupted by SIGINT");
+    EXPECT_HAS(out, "state: not started yet");
+    EXPECT_HAS(out, "sweep: 0 of 2 runs finished; continue it with: orodem resume " + sw);
+    // A new sweep into the folder is refused, and says how to continue it.
+    EXPECT_EQ(run(std::string(ORODEM_EXE) + " sweep " + tiny + " --vary wedge.mu_bp=0.1,0.5 --out " + sw, &out), 2);
+    EXPECT_HAS(out, "or continue the sweep in it with: orodem resume " + sw);
+
+    // Continued at another thread count: the interrupted member resumes, the other starts.
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " resume " + sw + " --threads 2", &out), 0) << out;
+    EXPECT_HAS(out, "sweep: wedge.mu_bp = 0.1: continuing " + sw + "/wedge.mu_bp=0.1");
+    EXPECT_HAS(out, "sweep: wedge.mu_bp = 0.5 -> " + sw + "/wedge.mu_bp=0.5");
+    for (const char* m : {"wedge.mu_bp=0.1", "wedge.mu_bp=0.5"}) expect_same_outputs(dir / "ref" / m, dir / "sw" / m);
+    EXPECT_HAS(slurp(dir / "sw" / "wedge.mu_bp=0.1" / "log.txt"), "resumed by orodem");
+    EXPECT_TRUE(fs::exists(dir / "sw" / "plots.png"));
+
+    // Nothing left to do: both kept as they are.
+    const std::string before = slurp(dir / "sw" / "wedge.mu_bp=0.5" / "series.csv");
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " resume " + sw, &out), 0) << out;
+    EXPECT_HAS(out, "sweep: wedge.mu_bp = 0.1: finished already, kept");
+    EXPECT_HAS(out, "sweep: wedge.mu_bp = 0.5: finished already, kept");
+    EXPECT_EQ(slurp(dir / "sw" / "wedge.mu_bp=0.5" / "series.csv"), before);
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " status " + sw, &out), 0) << out;
+    EXPECT_HAS(out, "sweep: 2 of 2 runs finished\n");
+    fs::remove_all(dir);
+}
+
+TEST(Sweep, ItsManifestReadsBackAndABrokenOneIsRefusedByName) {
+    const fs::path dir = tiny_dir();
+    ASSERT_FALSE(dir.empty());
+    const orodem::SweepManifest m{"configs/a \"b\".toml", "wedge.mu_bp", {"0.1", "0.5"}, {"wedge.s_max=2"}};
+    orodem::write_file_atomic(orodem::sweep_manifest_path(dir.string()), orodem::to_toml(m));
+    const orodem::SweepManifest r = orodem::read_sweep_manifest(dir.string());
+    EXPECT_EQ(r.config, m.config);
+    EXPECT_EQ(r.key, m.key);
+    EXPECT_EQ(r.values, m.values);
+    EXPECT_EQ(r.sets, m.sets);
+    EXPECT_EQ(orodem::sweep_member_dir("S", r, "0.5"), "S/wedge.mu_bp=0.5");
+    orodem::write_file_atomic(orodem::sweep_manifest_path(dir.string()), "config = \"x.toml\"\nvary = 3\n");
+    try {
+        orodem::read_sweep_manifest(dir.string());
+        ADD_FAILURE() << "a manifest whose vary is a number was read";
+    } catch (const orodem::ConfigError& e) {
+        EXPECT_HAS(e.what(), "sweep.toml: 'vary' is missing or not a string");
+    }
+    // orodem resume on it: exit 2 and the same line.
+    std::string out;
+    EXPECT_EQ(run(std::string(ORODEM_EXE) + " resume " + dir.string(), &out), 2);
+    EXPECT_HAS(out, "'vary' is missing or not a string");
+    fs::remove_all(dir);
+}
+
+TEST(Sweep, AMemberThatFailsDoesNotStopTheOthersAndIsSkippedOnResume) {
+    // run.domain_height = 0.5 h0 puts the top of the layer outside the domain
+    // at step 0 (exit 3 for a single run); 0 is the default, no ceiling.
+    const fs::path dir = tiny_dir();
+    ASSERT_FALSE(dir.empty());
+    const std::string sw = (dir / "sw").string();
+    std::string out;
+    EXPECT_EQ(run(std::string(ORODEM_EXE) + " sweep " + (dir / "tiny.toml").string() +
+                  " --vary run.domain_height=0.5,0 --out " + sw + " --threads 1", &out), 3)
+        << out;
+    EXPECT_HAS(out, "sweep: run.domain_height = 0.5: unstable:");
+    EXPECT_HAS(out, "sweep: 1 of 2 runs went unstable (run.domain_height = 0.5); the plots leave them out");
+    EXPECT_HAS(slurp(dir / "sw" / "run.domain_height=0" / "log.txt"), "finished:");
+    EXPECT_TRUE(fs::exists(dir / "sw" / "plots.png"));
+    EXPECT_EQ(run(std::string(ORODEM_EXE) + " resume " + sw, &out), 3) << out;
+    EXPECT_HAS(out, "sweep: run.domain_height = 0.5: ended with an error before (see " + sw +
+                        "/run.domain_height=0.5/log.txt); skipped");
+    EXPECT_HAS(out, "sweep: run.domain_height = 0: finished already, kept");
     fs::remove_all(dir);
 }

@@ -55,19 +55,20 @@ double number_after(const std::string& line, const std::string& key) {
 }
 
 /// Prints the status of the run in dir; returns true when it is finished. A
-/// sweep's member (in_sweep) is continued with the sweep, not on its own.
-bool status_of_run(const std::string& dir, const std::string& in_sweep = "") {
+/// sweep's member (in_sweep) is continued with the sweep, not on its own, so
+/// it prints no command of its own.
+bool status_of_run(const std::string& dir, bool in_sweep = false) {
     require_run_dir(dir);
     const Config c = load_config(dir + "/config.toml");
     if (!is_wedge(c))
         throw ConfigError(fmt::format("'{}' is a run of run.experiment = \"{}\"; orodem status reads the wedge "
                                       "experiments' run directories",
                                       dir, c.run.experiment));
-    const std::string continue_with = in_sweep.empty() ? "continue with: orodem resume " + dir
-                                                       : "continue the sweep with: orodem resume " + in_sweep;
+    // A sweep's members are continued with the sweep (cmd_status says so once).
+    const std::string continue_with = !in_sweep ? "continue with: orodem resume " + dir + "\n" : "";
     if (!fs::exists(dir + "/log.txt")) {
         // A sweep writes every member's config.toml before the first one runs.
-        fmt::print("run: {} ({}, S_max = {:g})\nstate: not started yet\n{}\n", dir, c.run.experiment, c.wedge.s_max,
+        fmt::print("run: {} ({}, S_max = {:g})\nstate: not started yet\n{}", dir, c.run.experiment, c.wedge.s_max,
                    continue_with);
         return false;
     }
@@ -148,7 +149,7 @@ bool status_of_run(const std::string& dir, const std::string& in_sweep = "") {
         if (std::isfinite(rate) && rate > 0.0 && std::isfinite(total) && std::isfinite(last_step))
             fmt::print("rate: {:.0f} steps/s at the last output; about {} left at that rate\n", rate,
                        duration_text((total - last_step) / rate));
-        fmt::print("{}\n", continue_with);
+        fmt::print("{}", continue_with);
     }
     return finished;
 }
@@ -193,7 +194,7 @@ int cmd_status(const std::string& dir) {
         int finished = 0;
         for (std::size_t k = 0; k < members.size(); ++k) {
             if (k) fmt::print("\n");
-            finished += status_of_run(members[k], manifest ? dir : "") ? 1 : 0;
+            finished += status_of_run(members[k], manifest) ? 1 : 0;
         }
         if (manifest)
             fmt::print("\nsweep: {} of {} runs finished{}\n", finished, members.size(),

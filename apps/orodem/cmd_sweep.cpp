@@ -7,8 +7,22 @@
 // one is resumed from its checkpoint (bit for bit as if never stopped), one
 // not started yet is started. A member that goes unstable does not stop the
 // others: it is reported, skipped on resume, and the sweep exits with 3.
+// With --jobs N the members run N at a time, each in a child process
+// (`orodem sweep-member DIR`, output in DIR/console.txt) with the cores
+// shared among them; a packing they share is settled once first.
+#include <fcntl.h>
+#include <omp.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -20,6 +34,9 @@
 #include "orodem/io/files.hpp"
 #include "orodem/io/series_reader.hpp"
 #include "orodem/io/sweep_manifest.hpp"
+#include "orodem/io/packing_file.hpp"
+
+extern char** environ;
 
 namespace orodem {
 
@@ -50,54 +67,217 @@ std::pair<std::string, std::vector<std::string>> parse_vary(const std::string& t
     return {text.substr(0, eq), values};
 }
 
-/// Runs, continues or keeps one member; its exit status (0 when kept).
-int run_member(const Config& c, const std::string& dir, const std::string& label) {
+/// What a member needs.
+enum class MemberState { start, resume, finished, failed };
+
+MemberState member_state(const Config& c, const std::string& dir) {
     if (!is_wedge(c)) {
         // A settled layer is not checkpointed: done when its packing is written, else settled again.
-        if (fs::exists(dir + "/packing.bin")) {
-            fmt::print("sweep: {}: finished already, kept ({})\n", label, dir);
-            return 0;
-        }
-        for (const auto& e : fs::directory_iterator(dir))
-            if (e.path().filename() != "config.toml") fs::remove_all(e.path());
-        fmt::print("sweep: {} -> {}\n", label, dir);
-        return start_run_in(c, dir);
+        return fs::exists(dir + "/packing.bin") ? MemberState::finished : MemberState::start;
     }
-    if (!fs::exists(dir + "/log.txt")) {
-        fmt::print("sweep: {} -> {}\n", label, dir);
-        return start_run_in(c, dir);
-    }
-    if (last_run_event_is(dir, "finished:")) {
+    if (!fs::exists(dir + "/log.txt")) return MemberState::start;
+    if (last_run_event_is(dir, "finished:")) return MemberState::finished;
+    // Resuming would repeat the same failure from the same state.
+    if (last_run_event_is(dir, "UNSTABLE:") || last_run_event_is(dir, "STOPPED:")) return MemberState::failed;
+    return MemberState::resume;
+}
+
+/// Says that a member needs no run; its exit status (0 kept, 3 failed before).
+int report_done(MemberState st, const std::string& dir, const std::string& label) {
+    if (st == MemberState::finished) {
         fmt::print("sweep: {}: finished already, kept ({})\n", label, dir);
         return 0;
     }
-    if (last_run_event_is(dir, "UNSTABLE:") || last_run_event_is(dir, "STOPPED:")) {
-        // Resuming would repeat the same failure from the same state.
-        fmt::print(stderr, "orodem: sweep: {}: ended with an error before (see {}/log.txt); skipped\n", label, dir);
-        return static_cast<int>(ExitCode::unstable);
-    }
-    fmt::print("sweep: {}: continuing {}\n", label, dir);
-    return resume_run(c, dir);
+    fmt::print(stderr, "orodem: sweep: {}: ended with an error before (see {}/log.txt); skipped\n", label, dir);
+    return static_cast<int>(ExitCode::unstable);
 }
 
-/// The members of the sweep in root, in order; then the overlay plots. The
-/// configs come from the members' config.toml (threads >= 0 overrides run.threads).
-int run_members(const std::string& root, const SweepManifest& m, int threads) {
+/// Runs, continues or keeps one member; its exit status (0 when kept).
+int run_member(const Config& c, const std::string& dir, const std::string& label) {
+    const MemberState st = member_state(c, dir);
+    if (st == MemberState::finished || st == MemberState::failed) return report_done(st, dir, label);
+    if (st == MemberState::resume) {
+        fmt::print("sweep: {}: continuing {}\n", label, dir);
+        return resume_run(c, dir);
+    }
+    if (!is_wedge(c))
+        for (const auto& e : fs::directory_iterator(dir))
+            if (e.path().filename() != "config.toml") fs::remove_all(e.path());
+    fmt::print("sweep: {} -> {}\n", label, dir);
+    return start_run_in(c, dir);
+}
+
+/// A member's config, from its config.toml (threads >= 0 overrides run.threads).
+Config member_config(const std::string& root, const std::string& dir, int threads) {
+    if (!fs::exists(dir + "/config.toml"))
+        throw ConfigError(fmt::format("{}/config.toml: missing; the sweep folder {} was changed since orodem sweep "
+                                      "wrote it, so it cannot be continued",
+                                      dir, root));
+    CommonArgs one;
+    one.config = dir + "/config.toml";
+    one.threads = threads;
+    Config c = load(one);
+    check_runnable(c);
+    return c;
+}
+
+/// The end of a sweep: the overlay plots of the members that finished, and
+/// the exit status (3 when some went unstable, naming them).
+int finish_sweep(const std::string& root, const SweepManifest& m, const std::vector<std::string>& dirs,
+                 const std::vector<std::string>& failed, bool all_wedges) {
+    // A sweep over the seeds is an ensemble: its mean over the seeds' band.
+    if (all_wedges && !dirs.empty()) cmd_plot(dirs, root + "/plots.png", is_seed_key(m.key));
+    fmt::print("sweep outputs in {}/\n", root);
+    if (failed.empty()) return 0;
+    std::string list;
+    for (const auto& f : failed) list += (list.empty() ? "" : ", ") + f;
+    fmt::print(stderr, "orodem: sweep: {} of {} runs went unstable ({}); the plots leave them out\n", failed.size(),
+               m.values.size(), list);
+    return static_cast<int>(ExitCode::unstable);
+}
+
+std::string member_label(const SweepManifest& m, const std::string& value) {
+    return fmt::format("{} = {}", m.key, value);
+}
+
+/// This executable, to start the members of a parallel sweep.
+std::string self_exe() {
+    std::error_code ec;
+    const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) throw IoError(fmt::format("cannot find this executable (/proc/self/exe: {})", ec.message()));
+    return p.string();
+}
+
+/// Starts `orodem sweep-member DIR [--threads T]` in its own process group
+/// (a Ctrl-C on the terminal reaches the sweep, which passes it on once),
+/// output appended to DIR/console.txt.
+pid_t start_member(const std::string& exe, const std::string& dir, int threads) {
+    const std::string console = dir + "/console.txt";
+    std::vector<std::string> args = {exe, "sweep-member", dir};
+    if (threads >= 0) {
+        args.push_back("--threads");
+        args.push_back(std::to_string(threads));
+    }
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, console.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
+    posix_spawnattr_t at;
+    posix_spawnattr_init(&at);
+    posix_spawnattr_setpgroup(&at, 0);
+    posix_spawnattr_setflags(&at, POSIX_SPAWN_SETPGROUP);
+    pid_t pid = -1;
+    const int rc = posix_spawn(&pid, exe.c_str(), &fa, &at, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&fa);
+    posix_spawnattr_destroy(&at);
+    if (rc != 0) throw IoError(fmt::format("cannot start {} for {}: {}", exe, dir, std::strerror(rc)));
+    return pid;
+}
+
+/// The members, `jobs` at a time in child processes. Each child writes only
+/// its own member's folder; the order of the results does not depend on
+/// which finishes first. A signal stops the starting of members and is passed
+/// on once to the running ones, which checkpoint; the sweep then exits with
+/// 128 + signal once they have.
+int run_members_parallel(const std::string& root, const SweepManifest& m, int threads, int jobs) {
+    const std::size_t n = m.values.size();
+    std::vector<std::string> dirs(n);
+    std::vector<Config> configs;
+    bool all_wedges = true;
+    for (std::size_t k = 0; k < n; ++k) {
+        dirs[k] = sweep_member_dir(root, m, m.values[k]);
+        configs.push_back(member_config(root, dirs[k], threads));
+        all_wedges = all_wedges && is_wedge(configs.back());
+    }
+    // Members that share a packing not cached yet would each settle it at the
+    // same time: settle each such packing once first (log in DIR/log.txt).
+    std::vector<std::string> settled;
+    for (std::size_t k = 0; k < n; ++k) {
+        if (!is_wedge(configs[k]) || member_state(configs[k], dirs[k]) != MemberState::start) continue;
+        const std::string cache = packing_cache_path(configs[k]);
+        if (std::find(settled.begin(), settled.end(), cache) != settled.end()) continue;
+        settled.push_back(cache);
+        if (fs::exists(cache)) continue;
+        fmt::print("sweep: settling the packing of {} first ({})\n", member_label(m, m.values[k]), cache);
+        ensure_packing_cached(configs[k], root + "/log.txt");
+    }
+    const std::string exe = self_exe();
+    const int child_threads = threads >= 0 ? threads : std::max(1, omp_get_num_procs() / jobs);
+    std::vector<int> rc(n, -1);
+    std::vector<pid_t> running;  // by slot k: pid, or -1
+    std::vector<std::size_t> running_k;
+    StopSignals signals;
+    int forwarded = 0;
+    std::size_t next = 0;
+    while (next < n || !running.empty()) {
+        while (!signals.pending() && running.size() < static_cast<std::size_t>(jobs) && next < n) {
+            const std::size_t k = next++;
+            const std::string label = member_label(m, m.values[k]);
+            const MemberState st = member_state(configs[k], dirs[k]);
+            if (st == MemberState::finished || st == MemberState::failed) {
+                rc[k] = report_done(st, dirs[k], label);
+                continue;
+            }
+            running.push_back(start_member(exe, dirs[k], child_threads));
+            running_k.push_back(k);
+            fmt::print("sweep: {} -> {} ({}, {} thread{}; its output in {}/console.txt)\n", label, dirs[k],
+                       st == MemberState::resume ? "continuing" : "starting", child_threads,
+                       child_threads == 1 ? "" : "s", dirs[k]);
+            std::fflush(stdout);
+        }
+        if (const int sig = signals.pending(); sig && !forwarded) {
+            forwarded = sig;
+            for (const pid_t p : running) ::kill(p, sig);
+        }
+        if (running.empty()) break;
+        int status = 0;
+        const pid_t done = ::waitpid(-1, &status, WNOHANG);
+        if (done <= 0) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+            continue;
+        }
+        const auto at = std::find(running.begin(), running.end(), done);
+        if (at == running.end()) continue;
+        const std::size_t slot = static_cast<std::size_t>(at - running.begin());
+        const std::size_t k = running_k[slot];
+        running.erase(at);
+        running_k.erase(running_k.begin() + static_cast<std::ptrdiff_t>(slot));
+        rc[k] = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+        fmt::print("sweep: {}: {}\n", member_label(m, m.values[k]),
+                   rc[k] == 0 ? "finished" : fmt::format("ended with exit status {} (see {}/console.txt)", rc[k], dirs[k]));
+        std::fflush(stdout);
+    }
+    std::vector<std::string> ok, failed;
+    int stop_rc = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        if (rc[k] == 0) ok.push_back(dirs[k]);
+        else if (rc[k] == static_cast<int>(ExitCode::unstable)) failed.push_back(member_label(m, m.values[k]));
+        else if (stop_rc == 0) stop_rc = rc[k] < 0 ? 128 + forwarded : rc[k];
+    }
+    if (forwarded || stop_rc != 0) {
+        fmt::print(stderr, "orodem: the sweep stopped{}; continue it with: orodem resume {}\n",
+                   forwarded ? fmt::format(" ({})", forwarded == SIGINT ? "SIGINT" : "SIGTERM") : std::string(), root);
+        return forwarded ? 128 + forwarded : stop_rc;
+    }
+    return finish_sweep(root, m, ok, failed, all_wedges);
+}
+
+/// The members of the sweep in root, in order (jobs > 1: that many at once);
+/// then the overlay plots. The configs come from the members' config.toml
+/// (threads >= 0 overrides run.threads).
+int run_members(const std::string& root, const SweepManifest& m, int threads, int jobs) {
+    if (jobs > 1) return run_members_parallel(root, m, threads, jobs);
     std::vector<std::string> dirs;
     std::vector<std::string> failed;
     bool all_wedges = true;
     for (const auto& v : m.values) {
         const std::string dir = sweep_member_dir(root, m, v);
-        const std::string label = fmt::format("{} = {}", m.key, v);
-        if (!fs::exists(dir + "/config.toml"))
-            throw ConfigError(fmt::format("{}/config.toml: missing; the sweep folder {} was changed since orodem sweep "
-                                          "wrote it, so it cannot be continued",
-                                          dir, root));
-        CommonArgs one;
-        one.config = dir + "/config.toml";
-        one.threads = threads;
-        const Config c = load(one);
-        check_runnable(c);
+        const std::string label = member_label(m, v);
+        const Config c = member_config(root, dir, threads);
         set_threads(c);
         all_wedges = all_wedges && is_wedge(c);
         int rc = 0;
@@ -123,22 +303,12 @@ int run_members(const std::string& root, const SweepManifest& m, int threads) {
         }
         dirs.push_back(dir);
     }
-    // A sweep over the seeds is an ensemble: its mean over the seeds' band.
-    if (all_wedges && !dirs.empty()) cmd_plot(dirs, root + "/plots.png", is_seed_key(m.key));
-    fmt::print("sweep outputs in {}/\n", root);
-    if (!failed.empty()) {
-        std::string list;
-        for (const auto& f : failed) list += (list.empty() ? "" : ", ") + f;
-        fmt::print(stderr, "orodem: sweep: {} of {} runs went unstable ({}); the plots leave them out\n",
-                   failed.size(), m.values.size(), list);
-        return static_cast<int>(ExitCode::unstable);
-    }
-    return 0;
+    return finish_sweep(root, m, dirs, failed, all_wedges);
 }
 
 }  // namespace
 
-int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg) {
+int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg, int jobs) {
     const auto [key, values] = parse_vary(vary);
     // Validate every member of the sweep before writing anything.
     std::vector<Config> configs;
@@ -168,19 +338,26 @@ int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& o
         write_file_atomic(dir + "/config.toml", to_toml(configs[k]));
     }
     write_file_atomic(sweep_manifest_path(root), to_toml(m));
-    return run_members(root, m, a.threads);
+    return run_members(root, m, a.threads, jobs);
 }
 
-int cmd_resume(const std::string& dir, int threads) {
+int cmd_resume(const std::string& dir, int threads, int jobs) {
     if (fs::exists(sweep_manifest_path(dir))) {
         const SweepManifest m = read_sweep_manifest(dir);
         fmt::print("continuing the sweep in {} ({} = {} values)\n", dir, m.key, m.values.size());
-        return run_members(dir, m, threads);
+        return run_members(dir, m, threads, jobs);
     }
     CommonArgs a;
     a.config = dir + "/config.toml";
     a.threads = threads;
     return cmd_run(a, dir, true);
+}
+
+int cmd_sweep_member(const std::string& dir, int threads) {
+    const std::string root = fs::path(dir).parent_path().string();
+    const Config c = member_config(root, dir, threads);
+    set_threads(c);
+    return run_member(c, dir, fs::path(dir).filename().string());
 }
 
 }  // namespace orodem

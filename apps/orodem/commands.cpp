@@ -44,6 +44,31 @@
 namespace fs = std::filesystem;
 namespace orodem {
 
+namespace {
+
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
+
+}  // namespace
+
+StopSignals::StopSignals() {
+    g_stop_signal = 0;
+    struct sigaction sa {};
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESETHAND | SA_RESTART;
+    ::sigaction(SIGINT, &sa, &old_int_);
+    ::sigaction(SIGTERM, &sa, &old_term_);
+}
+
+StopSignals::~StopSignals() {
+    ::sigaction(SIGINT, &old_int_, nullptr);
+    ::sigaction(SIGTERM, &old_term_, nullptr);
+}
+
+int StopSignals::pending() const { return static_cast<int>(g_stop_signal); }
+
 Config load(const CommonArgs& a) {
     std::vector<Override> ov;
     for (const auto& s : a.sets) ov.push_back(parse_override(s));
@@ -151,37 +176,6 @@ public:
 private:
     bool tty_;
     std::chrono::steady_clock::time_point t0_;
-};
-
-/// SIGINT/SIGTERM while a wedge runs: the handler only records the signal;
-/// SA_RESETHAND puts the default action back, so a second signal ends the
-/// process at once (every file is written atomically or line by line, so
-/// nothing is left corrupt; at worst a *.tmp file stays behind).
-volatile std::sig_atomic_t g_stop_signal = 0;
-
-extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
-
-class StopSignals {
-public:
-    StopSignals() {
-        g_stop_signal = 0;
-        struct sigaction sa {};
-        sa.sa_handler = on_stop_signal;
-        sigemptyset(&sa.sa_mask);
-        sa.sa_flags = SA_RESETHAND | SA_RESTART;
-        ::sigaction(SIGINT, &sa, &old_int_);
-        ::sigaction(SIGTERM, &sa, &old_term_);
-    }
-    ~StopSignals() {
-        ::sigaction(SIGINT, &old_int_, nullptr);
-        ::sigaction(SIGTERM, &old_term_, nullptr);
-    }
-    StopSignals(const StopSignals&) = delete;
-    StopSignals& operator=(const StopSignals&) = delete;
-    int pending() const { return static_cast<int>(g_stop_signal); }
-
-private:
-    struct sigaction old_int_ {}, old_term_ {};
 };
 
 /// The settled layer of c: from the cache when present, else settled now
@@ -727,6 +721,11 @@ int start_run_in(const Config& c, const std::string& dir) {
         return 0;
     }
     return start_wedge(c, dir, log);
+}
+
+void ensure_packing_cached(const Config& c, const std::string& log_path) {
+    LineFile log(log_path);
+    prepare_layer(c, fs::path(log_path).parent_path().string(), log, nullptr);
 }
 
 /// The canonical benchmark: run `steps` steps of the settled pile, check the

@@ -3,6 +3,7 @@
 // and lets library errors propagate (main maps them to exit statuses).
 #pragma once
 
+#include <csignal>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -36,13 +37,39 @@ int start_run_in(const Config& c, const std::string& dir);
 /// beginning when it has none); c must be its config.
 int resume_run(const Config& c, const std::string& dir);
 
+/// SIGINT/SIGTERM while a run or a sweep goes on: the handler only records
+/// the signal; SA_RESETHAND puts the default action back, so a second signal
+/// ends the process at once (every file is written atomically or line by
+/// line, so nothing is left corrupt; at worst a *.tmp file stays behind).
+class StopSignals {
+public:
+    StopSignals();
+    ~StopSignals();
+    StopSignals(const StopSignals&) = delete;
+    StopSignals& operator=(const StopSignals&) = delete;
+    /// The signal received since construction, 0 if none.
+    int pending() const;
+
+private:
+    struct sigaction old_int_ {}, old_term_ {};
+};
+
+/// Settles c's layer into its packing cache unless it is there already; the
+/// log lines go to log_path.
+void ensure_packing_cached(const Config& c, const std::string& log_path);
+
 /// orodem sweep (cmd_sweep.cpp): one run per value of a key into DIR/<key>=<value>/,
 /// recorded in DIR/sweep.toml, then the overlay plots.
-int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg);
+/// jobs > 1: that many members at once, each in a child process.
+int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg, int jobs = 1);
 /// orodem resume DIR: a sweep folder (with sweep.toml) continues its members in
-/// order (finished ones kept, interrupted ones resumed, the rest started);
-/// any other DIR is one run, resumed. threads < 0: each run's own run.threads.
-int cmd_resume(const std::string& dir, int threads);
+/// order (finished ones kept, interrupted ones resumed, the rest started;
+/// jobs of them at once); any other DIR is one run, resumed. threads < 0:
+/// each run's own run.threads (with jobs > 1: the cores shared among the jobs).
+int cmd_resume(const std::string& dir, int threads, int jobs = 1);
+/// The hidden `orodem sweep-member DIR`: one member of a parallel sweep, run
+/// or continued in the child process that the sweep started for it.
+int cmd_sweep_member(const std::string& dir, int threads);
 int cmd_bench_pile(const std::string& pile, std::uint64_t steps, int threads);
 
 /// orodem plot (cmd_plot.cpp): the S plots of one or more runs into out

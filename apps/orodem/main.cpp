@@ -36,6 +36,18 @@ int main(int argc, char** argv) {
                                                     "interrupted one continued, the rest started");
     resume_cmd->add_option("run_dir", resume_dir, "Run directory, or a sweep's folder")->required();
     resume_cmd->add_option("--threads", resume_args.threads, "OpenMP threads (0 = all cores)");
+    int resume_jobs = 1;
+    resume_cmd->add_option("--jobs", resume_jobs, "A sweep's runs at once, each in its own process with the cores "
+                                                  "shared among them unless --threads is given")
+        ->check(CLI::Range(1, 256))
+        ->capture_default_str();
+
+    std::string member_dir;
+    int member_threads = -1;
+    auto* member = app.add_subcommand("sweep-member", "One run of a parallel sweep (started by orodem sweep --jobs)");
+    member->group("");  // internal: not listed in --help
+    member->add_option("run_dir", member_dir, "The member's folder")->required();
+    member->add_option("--threads", member_threads, "OpenMP threads");
 
     std::string status_dir;
     auto* status = app.add_subcommand("status", "Where the wedge run in RUN_DIR (or each run of a sweep's folder) stands: "
@@ -55,6 +67,11 @@ int main(int argc, char** argv) {
     sweep->add_option("--out", sweep_out, "Output directory (new or empty); default runs/<config name>-sweep");
     sweep->add_option("--set", sweep_args.sets, "Override a config value")->take_all();
     sweep->add_option("--threads", sweep_args.threads, "OpenMP threads (0 = all cores)");
+    int sweep_jobs = 1;
+    sweep->add_option("--jobs", sweep_jobs, "Runs at once, each in its own process with the cores shared among "
+                                            "them unless --threads is given")
+        ->check(CLI::Range(1, 256))
+        ->capture_default_str();
 
     std::vector<std::string> plot_dirs;
     std::string plot_out;
@@ -120,10 +137,11 @@ int main(int argc, char** argv) {
     }
     try {
         if (*run) return cmd_run(run_args, out, resume);
-        if (*resume_cmd) return cmd_resume(resume_dir, resume_args.threads);
+        if (*resume_cmd) return cmd_resume(resume_dir, resume_args.threads, resume_jobs);
+        if (*member) return cmd_sweep_member(member_dir, member_threads);
         if (*status) return cmd_status(status_dir);
         if (*check) return cmd_check(check_args);
-        if (*sweep) return cmd_sweep(sweep_args, sweep_vary, sweep_out);
+        if (*sweep) return cmd_sweep(sweep_args, sweep_vary, sweep_out, sweep_jobs);
         if (*calib) return cmd_calibrate(calib_args, calib_out);
         if (*plot) return cmd_plot(plot_dirs, plot_out, plot_seeds);
         if (*render) return cmd_render(render_dir, render_at, render_format, render_width);

@@ -283,7 +283,8 @@ TEST_F(PlotRender, ValidateFindingsScriptMeasuresRunsAndTheSpreadOverSeeds) {
     // scripts/validate-findings on hand-made series with known answers:
     // S = 0.25 ... 6 (last third: S >= 4), H = 0.4 S^0.5 (b = 0.5 exactly),
     // alpha = 10 deg before S = 3 and c after, beta = b0 throughout.
-    auto make = [&](const std::string& name, double c, double b0, double wall_from) {
+    // The peak lies at 0.1 h0 ± swing, + at odd rows and - at even ones.
+    auto make = [&](const std::string& name, double c, double b0, double wall_from, double swing = 0.0) {
         const fs::path dir = work_ / "findings" / name;
         fs::create_directories(dir);
         write(dir / "config.toml", "[wedge]\ns_max = 6.0\npro_margin = 10.0\n");
@@ -293,14 +294,14 @@ TEST_F(PlotRender, ValidateFindingsScriptMeasuresRunsAndTheSpreadOverSeeds) {
         for (int k = 1; k <= 24; ++k) {
             const double S = 0.25 * k;
             const double toe = S >= wall_from ? -(16.0 - S) + 0.5 : -5.0;  // trailing wall at -(16 - S) h0
-            s << S << ',' << 0.4 * std::sqrt(S) << ',' << (S < 3.0 ? 10.0 : c) << ',' << b0 << ",0.1,90,"
-              << toe << ",2.5\n";
+            s << S << ',' << 0.4 * std::sqrt(S) << ',' << (S < 3.0 ? 10.0 : c) << ',' << b0 << ','
+              << 0.1 + (k % 2 ? swing : -swing) << ",90," << toe << ",2.5\n";
         }
         write(dir / "series.csv", s.str());
         return dir.string();
     };
     const std::string a1 = make("a1", 5.0, 20.0, 99.0), a2 = make("a2", 6.0, 21.0, 5.0),
-                      a3 = make("a3", 7.0, 22.0, 99.0), b1 = make("b1", 9.0, 25.0, 99.0);
+                      a3 = make("a3", 7.0, 22.0, 99.0), b1 = make("b1", 9.0, 25.0, 99.0, 1.0);
     const std::string script = "python3 " + quote(std::string(ORODEM_SOURCE_DIR) + "/scripts/validate-findings");
     std::string out;
     ASSERT_EQ(run(script + " " + quote(a1) + " " + quote(a2), &out), 0) << out;
@@ -310,9 +311,14 @@ TEST_F(PlotRender, ValidateFindingsScriptMeasuresRunsAndTheSpreadOverSeeds) {
     // (9 - 6) / sqrt(1/3 + 1/1) = 2.6 standard errors.
     ASSERT_EQ(run(script + " --spread A=" + quote(a1) + "," + quote(a2) + "," + quote(a3) + " B=" + quote(b1), &out), 0)
         << out;
-    EXPECT_HAS(out, "| A | 3 | 10.00 ± 0.00 | 6.00 ± 1.00 | 6.00 ± 1.00 | 21.00 ± 1.00 | 0.500 ± 0.000 | 0.980 ± 0.000 | 90.0 ± 0.0 |");
-    EXPECT_HAS(out, "| B | 1 | 10.00 | 9.00 | 9.00 | 25.00 | 0.500 | 0.980 | 90.0 |");
+    // b1's peak over the last third (S >= 4: rows 16-24, five at -0.9, four at
+    // +1.1): mean 0.1 - 1/9 = -0.01 h0, range 2 h0.
+    EXPECT_HAS(out, "| A | 3 | 10.00 ± 0.00 | 6.00 ± 1.00 | 6.00 ± 1.00 | 21.00 ± 1.00 | 0.500 ± 0.000 | 0.980 ± 0.000 | "
+                    "90.0 ± 0.0 | 2.50 ± 0.00 | 0.10 ± 0.00 | 0.00 ± 0.00 |");
+    EXPECT_HAS(out, "| B | 1 | 10.00 | 9.00 | 9.00 | 25.00 | 0.500 | 0.980 | 90.0 | 2.50 | -0.01 | 2.00 |");
     EXPECT_HAS(out, "alpha (S >= 3): B - A = +3.00 deg, +2.6 seed standard errors");
+    // beta: (25 - 21) / sqrt(1/3 + 1/1) = 3.5 standard errors.
+    EXPECT_HAS(out, "beta (last third): B - A = +4.00 deg, +3.5 seed standard errors");
     EXPECT_NE(run(script + " --spread A" + " 2>&1", &out), 0);
     EXPECT_HAS(out, "LABEL=RUN_DIR");
 }

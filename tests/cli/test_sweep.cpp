@@ -31,6 +31,16 @@ fs::path tiny_dir() {
     return tmpl;
 }
 
+/// The sequential sweep of dir/tiny.toml over wedge.mu_bp = 0.1, 0.5 into
+/// dir/ref, with five outputs (S = 0 to 0.5: enough pictures for
+/// expect_same_outputs); its exit status.
+int reference_sweep(const fs::path& dir, std::string* out) {
+    return run(std::string(ORODEM_EXE) + " sweep " + (dir / "tiny.toml").string() +
+                   " --vary wedge.mu_bp=0.1,0.5 --out " + (dir / "ref").string() +
+                   " --threads 1 --set wedge.output_ds=0.125",
+               out);
+}
+
 }  // namespace
 
 TEST(Sweep, OneRunPerValueReusingTheLayerThenPlots) {
@@ -84,10 +94,7 @@ TEST(Sweep, InterruptedItContinuesWithResumeAndEndsAsAnUninterruptedSweep) {
     ASSERT_FALSE(dir.empty());
     const std::string tiny = (dir / "tiny.toml").string(), sw = (dir / "sw").string();
     std::string out;
-    // Five outputs (S = 0 to 0.5): enough pictures for expect_same_outputs.
-    ASSERT_EQ(run(std::string(ORODEM_EXE) + " sweep " + tiny + " --vary wedge.mu_bp=0.1,0.5 --out " +
-                  (dir / "ref").string() + " --threads 1 --set wedge.output_ds=0.125", &out), 0)
-        << out;
+    ASSERT_EQ(reference_sweep(dir, &out), 0) << out;
 
     // SIGINT while the first member runs: it checkpoints, the second has not started.
     const Proc p = start({"sweep", tiny, "--vary", "wedge.mu_bp=0.1,0.5", "--out", sw, "--threads", "1", "--set",
@@ -168,5 +175,30 @@ TEST(Sweep, AMemberThatFailsDoesNotStopTheOthersAndIsSkippedOnResume) {
     EXPECT_HAS(out, "sweep: run.domain_height = 0.5: ended with an error before (see " + sw +
                         "/run.domain_height=0.5/log.txt); skipped");
     EXPECT_HAS(out, "sweep: run.domain_height = 0: finished already, kept");
+    fs::remove_all(dir);
+}
+
+TEST(Sweep, WithTwoJobsTheRunsAreThoseOfASequentialSweepAlsoWhenInterrupted) {
+    // --jobs 2: the members run in two child processes at once. A SIGTERM to
+    // the sweep reaches both (they checkpoint); resumed with two jobs, every
+    // member ends byte-identical to the sequential sweep's.
+    const fs::path dir = tiny_dir();
+    ASSERT_FALSE(dir.empty());
+    const std::string tiny = (dir / "tiny.toml").string(), sw = (dir / "sw").string();
+    std::string out;
+    ASSERT_EQ(reference_sweep(dir, &out), 0) << out;
+    const Proc p = start({"sweep", tiny, "--vary", "wedge.mu_bp=0.1,0.5", "--out", sw, "--jobs", "2", "--threads", "1",
+                          "--set", "wedge.output_ds=0.125"},
+                         dir / "sw");
+    ASSERT_TRUE(signal_after_checkpoint(p, dir / "sw" / "wedge.mu_bp=0.1", {SIGTERM})) << slurp(p.err);
+    ASSERT_EQ(wait_for(p), 143) << slurp(p.out) << slurp(p.err);
+    EXPECT_HAS(slurp(p.out), "sweep: wedge.mu_bp = 0.5 -> " + sw + "/wedge.mu_bp=0.5 (starting, 1 thread");
+    EXPECT_HAS(slurp(p.err), "the sweep stopped (SIGTERM); continue it with: orodem resume " + sw);
+    EXPECT_HAS(slurp(dir / "sw" / "wedge.mu_bp=0.1" / "console.txt"), "interrupted by SIGTERM");
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " resume " + sw + " --jobs 2 --threads 1", &out), 0) << out;
+    EXPECT_HAS(out, "sweep: wedge.mu_bp = 0.1 -> " + sw + "/wedge.mu_bp=0.1 (continuing, 1 thread");
+    for (const char* m : {"wedge.mu_bp=0.1", "wedge.mu_bp=0.5"}) expect_same_outputs(dir / "ref" / m, dir / "sw" / m);
+    EXPECT_HAS(slurp(dir / "sw" / "wedge.mu_bp=0.1" / "log.txt"), "resumed by orodem");
+    EXPECT_TRUE(fs::exists(dir / "sw" / "plots.png"));
     fs::remove_all(dir);
 }

@@ -100,9 +100,13 @@ int run_member(const Config& c, const std::string& dir, const std::string& label
         fmt::print("sweep: {}: continuing {}\n", label, dir);
         return resume_run(c, dir);
     }
-    if (!is_wedge(c))
+    if (!is_wedge(c)) {
+        // What an interrupted settling left, but the config and the output of a parallel sweep's child.
+        std::vector<fs::path> partial;
         for (const auto& e : fs::directory_iterator(dir))
-            if (e.path().filename() != "config.toml") fs::remove_all(e.path());
+            if (e.path().filename() != "config.toml" && e.path().filename() != "console.txt") partial.push_back(e.path());
+        for (const auto& q : partial) fs::remove_all(q);
+    }
     fmt::print("sweep: {} -> {}\n", label, dir);
     return start_run_in(c, dir);
 }

@@ -1,5 +1,8 @@
 // `orodem render RUN_DIR`: re-draws the horizon and displacement pictures
 // (SPEC §3) from the saved snapshots listed in run.pvd into RUN_DIR/figures/.
+// `orodem measure RUN_DIR`: the wedge measures of every saved snapshot, taken
+// again with this orodem's analysis (a run that an older orodem made gains
+// the measures added since), as CSV on standard output.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -11,9 +14,12 @@
 #include <toml++/toml.h>
 
 #include "orodem/core/error.hpp"
+#include "orodem/analysis/wedge_profile.hpp"
+#include "orodem/io/config.hpp"
 #include "orodem/io/files.hpp"
 #include "orodem/io/vtu_writer.hpp"
 #include "orodem/render/particle_view.hpp"
+#include "orodem/setup/wedge.hpp"
 
 #include "commands.hpp"
 
@@ -132,6 +138,40 @@ int cmd_render(const std::string& run_dir, const std::vector<double>& at, const 
         }
     }
     fmt::print("render: {} pictures of {} snapshots in {}\n", pictures, chosen.size(), (dir / "figures").string());
+    return 0;
+}
+
+int cmd_measure(const std::string& run_dir) {
+    require_run_dir(run_dir);
+    const fs::path dir(run_dir);
+    const Config c = load_config((dir / "config.toml").string());
+    const std::string& e = c.run.experiment;
+    if (e != "exp1" && e != "exp2" && e != "exp3" && e != "critical-wedge")
+        throw ConfigError(fmt::format("'{}' is a {} run, which has no wedge to measure; measure takes a run of "
+                                      "exp1, exp2, exp3 or critical-wedge",
+                                      run_dir, e));
+    const std::vector<Snapshot> snaps = read_pvd((dir / "run.pvd").string());
+    if (snaps.front().S != 0.0)
+        throw IoError(fmt::format("'{}': the first snapshot is at S = {:g}; measure needs the one at S = 0, where "
+                                  "the undeformed surface y_mean is taken as the run took it",
+                                  (dir / "run.pvd").string(), snaps.front().S));
+    ProfileParams pp = wedge_profile_params(c);
+    const double h0 = c.packing.h0;
+    fmt::print("S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,toe_pro_x_over_h0,toe_retro_x_over_h0,"
+               "beta_inner_deg,beta_outer_deg,retro_break_x_over_h0\n");
+    for (std::size_t k = 0; k < snaps.size(); ++k) {
+        const std::string vtu = (dir / snaps[k].file).string();
+        const VtuData d = read_vtu(vtu);
+        const auto& radius = need(d, "radius", vtu);
+        ParticleStore p;
+        for (std::size_t i = 0; i < d.x.size(); ++i) p.add(d.x[i], radius[i], 1.0);
+        if (p.size() == 0) throw IoError(fmt::format("'{}': snapshot holds no discs", vtu));
+        if (k == 0) pp.y_mean = undeformed_surface(p, pp);
+        const WedgeMeasures m = measure_wedge(p, pp, snaps[k].S * h0);
+        fmt::print("{:.6f},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", snaps[k].S,
+                   m.H_over_h0, m.alpha_deg, m.beta_deg, m.peak_dx_over_h0, m.dilation_pct, m.toe_pro_x / h0,
+                   m.toe_retro_x / h0, m.beta_inner_deg, m.beta_outer_deg, m.retro_break_x / h0);
+    }
     return 0;
 }
 

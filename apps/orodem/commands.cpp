@@ -231,7 +231,8 @@ ParticleStore prepare_layer(const Config& c, const std::string& dir, LineFile& l
 std::string series_header() {
     return "step,time,S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,kinetic_energy,contacts,"
            "max_overlap_ratio,toe_pro_x_over_h0,toe_retro_x_over_h0,base_traction,discs_on_base,"
-           "discs_sliding_on_base,fixed_discs,mean_overlap_ratio,max_speed,base_normal_force,trailing_wall_push";
+           "discs_sliding_on_base,fixed_discs,mean_overlap_ratio,max_speed,base_normal_force,trailing_wall_push,"
+           "beta_inner_deg,beta_outer_deg,retro_break_x_over_h0";
 }
 
 /// How many columns the series.csv of a run being resumed has: a run that an
@@ -411,13 +412,14 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
         const WedgeMeasures m = measure_wedge(sim.particles, w.profile, c.wedge.v * sim.time);
         const std::size_t fixed = w.fixed_retro ? w.fixed_retro->fixed_count() : 0;
         series.line(csv_first_fields(fmt::format("{},{:.9g},{:.6f},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.9g},{},{:.6g},{:.6g},{:.6g},"
-                                "{:.6g},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g}",
+                                "{:.6g},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}",
                                 sim.step_count, sim.time, S, m.H_over_h0, m.alpha_deg, m.beta_deg,
                                 m.peak_dx_over_h0, m.dilation_pct, ke, sim.touching_contacts(),
                                 sim.max_overlap_ratio(), m.toe_pro_x / h0, m.toe_retro_x / h0,
                                 w.base->total_traction(), w.base->discs_on_base(), w.base->discs_sliding(), fixed,
                                 sim.mean_overlap_ratio(), sim.max_speed(), sim.wall_force(kWallProBase).y,
-                                -sim.wall_force(kWallProEnd).x),
+                                -sim.wall_force(kWallProEnd).x, m.beta_inner_deg, m.beta_outer_deg,
+                                m.retro_break_x / h0),
                                 series_columns));
         const double secs = progress.elapsed();
         const double rate = static_cast<double>(sim.step_count - first_step) / std::max(secs, 1e-9);

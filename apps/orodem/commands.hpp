@@ -81,6 +81,9 @@ int cmd_plot(const std::vector<std::string>& run_dirs, const std::string& out, b
 /// orodem render (cmd_render.cpp): horizon and displacement pictures of the
 /// snapshots nearest each S of `at` (all when empty) into RUN_DIR/figures/.
 int cmd_render(const std::string& run_dir, const std::vector<double>& at, const std::string& format, int width);
+/// orodem measure (cmd_render.cpp): the wedge measures of each saved snapshot
+/// of a wedge run, taken again, as CSV on standard output.
+int cmd_measure(const std::string& run_dir);
 
 /// orodem taper (cmd_taper.cpp): the critical surface slopes of a dry noncohesive
 /// wedge (Dahlen 1984); exactly one of phi_b_deg and mu_b is given, the other is NaN.

@@ -100,6 +100,12 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(200, 20000))
         ->capture_default_str();
 
+    std::string measure_dir;
+    auto* measure = app.add_subcommand("measure", "The wedge measures (H, alpha, beta, the retroside in two "
+                                                  "slopes, peak, toes, dilation) of each saved snapshot of a wedge "
+                                                  "run, taken again, as CSV on standard output; writes nothing");
+    measure->add_option("run_dir", measure_dir, "Run directory")->required();
+
     double taper_phi = 0.0, taper_phib = std::nan(""), taper_mu_b = std::nan(""), taper_beta = 0.0;
     auto* taper = app.add_subcommand("taper", "Critical surface slopes of a dry noncohesive Coulomb wedge "
                                               "(exact solution of Dahlen 1984, both branches)");
@@ -145,6 +151,7 @@ int main(int argc, char** argv) {
         if (*calib) return cmd_calibrate(calib_args, calib_out);
         if (*plot) return cmd_plot(plot_dirs, plot_out, plot_seeds);
         if (*render) return cmd_render(render_dir, render_at, render_format, render_width);
+        if (*measure) return cmd_measure(measure_dir);
         if (*taper) return cmd_taper(taper_phi, taper_phib, taper_mu_b, taper_beta);
         if (*pile) return cmd_bench_pile(pile_file, pile_steps, pile_threads);
     } catch (const ConfigError& e) {

@@ -215,6 +215,51 @@ TEST_F(PlotRender, RenderRedrawsTheSnapshots) {
     EXPECT_EQ(orodem("render r1 --at one").status, 2);
 }
 
+TEST_F(PlotRender, MeasureTakesTheRunsMeasuresAgainFromItsSnapshots) {
+    // A real (tiny) run: `orodem measure` re-reads each snapshot and measures
+    // it with y_mean taken from the S = 0 one, as the run did from its layer;
+    // every measure it shares with series.csv must come out the same (the
+    // positions are stored exactly). Dilation divides by S h0 instead of
+    // v t, which agree to the 6 decimals of S: relative 1e-5.
+    write_tiny_exp1(work_);
+    ASSERT_EQ(orodem("run tiny.toml --out r --threads 1").status, 0);
+    const Result r = orodem("measure r");
+    ASSERT_EQ(r.status, 0) << r.err;
+    write(work_ / "measured.csv", r.out);
+    const orodem::Series again = orodem::read_series_csv((work_ / "measured.csv").string());
+    const orodem::Series series = orodem::read_series_csv((work_ / "r" / "series.csv").string());
+    ASSERT_EQ(again.rows(), series.rows());
+    ASSERT_EQ(again.rows(), 3u);
+    for (const char* name : {"S", "H_over_h0", "alpha_deg", "beta_deg", "peak_dx_over_h0", "toe_pro_x_over_h0",
+                             "toe_retro_x_over_h0", "beta_inner_deg", "beta_outer_deg", "retro_break_x_over_h0",
+                             "dilation_pct"}) {
+        const auto* a = again.column(name);
+        const auto* b = series.column(name);
+        ASSERT_TRUE(a && b) << name;
+        for (std::size_t k = 0; k < again.rows(); ++k) {
+            if (std::isnan((*b)[k])) {
+                EXPECT_TRUE(std::isnan((*a)[k])) << name << " row " << k;
+            } else if (std::string(name) == "dilation_pct") {
+                EXPECT_NEAR((*a)[k], (*b)[k], 1e-5 * std::fabs((*b)[k])) << name << " row " << k;
+            } else {
+                EXPECT_EQ((*a)[k], (*b)[k]) << name << " row " << k;
+            }
+        }
+    }
+    EXPECT_GT((*again.column("H_over_h0"))[2], 0.0);
+    // Not a wedge run, or not a run: one line, exit 2.
+    fs::create_directories(work_ / "s");
+    write(work_ / "s" / "config.toml", "[run]\nexperiment = 'settle'\n[packing]\nh0 = 6.0\n");
+    write(work_ / "s" / "series.csv", "step,time,kinetic_energy\n");
+    Result bad = orodem("measure s");
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_EQ(count_lines(bad.err), 1) << bad.err;
+    EXPECT_HAS(bad.err, "settle");
+    bad = orodem("measure nope");
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_EQ(count_lines(bad.err), 1) << bad.err;
+}
+
 TEST_F(PlotRender, MissingOrBrokenRunDirectoriesExitWithOneLine) {
     for (const char* cmd : {"plot nope", "render nope", "plot nope --out x.png"}) {
         const Result r = orodem(cmd);
@@ -321,6 +366,44 @@ TEST_F(PlotRender, ValidateFindingsScriptMeasuresRunsAndTheSpreadOverSeeds) {
     EXPECT_HAS(out, "beta (last third): B - A = +4.00 deg, +3.5 seed standard errors");
     EXPECT_NE(run(script + " --spread A" + " 2>&1", &out), 0);
     EXPECT_HAS(out, "LABEL=RUN_DIR");
+}
+
+TEST_F(PlotRender, ValidateFindingsScriptAveragesTheRetrosideTwoSlopes) {
+    // series.csv with the two-slope columns: S = 0.25 ... 6, last third S >= 4
+    // (rows 16-24). beta inner = bi, beta outer = bo + (+d at odd rows, -d at
+    // even ones: five -d and four +d over the last third), break 3 h0.
+    auto make = [&](const std::string& name, double bi, double bo, double d) {
+        const fs::path dir = work_ / "slopes" / name;
+        fs::create_directories(dir);
+        write(dir / "config.toml", "[wedge]\ns_max = 6.0\npro_margin = 10.0\n");
+        std::ostringstream s;
+        s << "S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,toe_pro_x_over_h0,toe_retro_x_over_h0,"
+             "beta_inner_deg,beta_outer_deg,retro_break_x_over_h0\n";
+        for (int k = 1; k <= 24; ++k)
+            s << 0.25 * k << ",0.5,5,10,0,90,-5,2.5," << (k < 8 ? std::string("nan") : std::to_string(bi)) << ','
+              << bo + (k % 2 ? d : -d) << ",3\n";
+        write(dir / "series.csv", s.str());
+        return dir.string();
+    };
+    const std::string a1 = make("a1", 12.0, 4.0, 0.0), a2 = make("a2", 14.0, 2.0, 0.0),
+                      b1 = make("b1", 7.0, 16.0, 0.9);
+    const std::string script = "python3 " + quote(std::string(ORODEM_SOURCE_DIR) + "/scripts/validate-findings");
+    std::string out;
+    ASSERT_EQ(run(script + " " + quote(b1), &out), 0) << out;
+    // b1's outer slope over the last third: 16 + (4 x 0.9 - 5 x 0.9) / 9 = 15.9.
+    EXPECT_HAS(out, "| b1 | 1 | 7.00 | 15.90 | 3.00 |");
+    ASSERT_EQ(run(script + " --spread A=" + quote(a1) + "," + quote(a2) + " B=" + quote(b1), &out), 0) << out;
+    EXPECT_HAS(out, "| A | 2 | 13.00 ± 1.41 | 3.00 ± 1.41 | 3.00 ± 0.00 |");
+    // (15.9 - 3) / sqrt(2/2 + 2/1) = 7.4 standard errors (B borrows A's sd).
+    EXPECT_HAS(out, "beta outer (last third): B - A = +12.90 deg, +7.4 seed standard errors");
+    // A run whose series predates the columns and has no snapshots: n/a.
+    const fs::path old = work_ / "slopes" / "old";
+    fs::create_directories(old);
+    write(old / "config.toml", "[wedge]\ns_max = 6.0\n");
+    write(old / "series.csv", "S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,toe_pro_x_over_h0,"
+                              "toe_retro_x_over_h0\n1,0.5,5,10,0,90,-5,2.5\n2,0.6,5,10,0,90,-5,2.5\n");
+    ASSERT_EQ(run(script + " " + quote(old.string()), &out), 0) << out;
+    EXPECT_HAS(out, "| old | 1 | n/a | n/a | n/a |");
 }
 
 TEST_F(PlotRender, SeedGroupsJoinTheRunsThatDifferOnlyInTheirSeeds) {

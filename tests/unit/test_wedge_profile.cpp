@@ -4,7 +4,9 @@
 //     centres lie exactly on lines of slope tan α (proside) and −tan β
 //     (retroside): α, β, H, peak deviation and both toes;
 //   - a flat lattice: H = 0 and D = 0;
-//   - a rectangular block of known area on a flat layer: D = 100 A_w / (s h0).
+//   - a rectangular block of known area on a flat layer: D = 100 A_w / (s h0);
+//   - two straight lines meeting at a kink, alone and as a retroside with a
+//     steep inner and a gentle outer slope: both slopes and the break.
 // Every measure is taken, as in the implementation, on disc centres: the
 // column surface is the highest centre and y_mean is a centre height.
 #include <gtest/gtest.h>
@@ -12,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <vector>
 
 #include "orodem/analysis/wedge_profile.hpp"
 
@@ -59,6 +62,21 @@ void add_heap_column(ParticleStore& p, int k, double h) {
         for (int j = 1; 2 * kR * j < h - kR; ++j) p.add({x, kYMean + 2 * kR * j}, kR, 2500.0);
 }
 
+/// The flat layer plus a heap of height h(x) (surface samples where h > 0),
+/// after checking that both toes stay half a metre inside the domain.
+template <class Height>
+ParticleStore heap_on_layer(double x_toe_pro, double x_toe_retro, Height h) {
+    EXPECT_GT(x_toe_pro, kXMin + 0.5);
+    EXPECT_LT(x_toe_retro, kXMax - 0.5);
+    ParticleStore p;
+    add_flat_layer(p);
+    for (int k = 0; k < kSamples; ++k) {
+        const double hk = h(sample_x(k));
+        if (hk > 0.0) add_heap_column(p, k, hk);
+    }
+    return p;
+}
+
 ProfileParams params(double toe_threshold) {
     ProfileParams pp;
     pp.x_min = kXMin;
@@ -83,16 +101,8 @@ void check_triangular_wedge(const WedgeCase& wc) {
     const double x_peak = sample_x(wc.peak_sample);
     const double x_toe_pro = x_peak - wc.height / ta;    // where the α line meets y_mean
     const double x_toe_retro = x_peak + wc.height / tb;  // where the β line meets y_mean
-    ASSERT_GT(x_toe_pro, kXMin + 0.5);
-    ASSERT_LT(x_toe_retro, kXMax - 0.5);
-
-    ParticleStore p;
-    add_flat_layer(p);
-    for (int k = 0; k < kSamples; ++k) {
-        const double x = sample_x(k);
-        const double h = std::min(ta * (x - x_toe_pro), tb * (x_toe_retro - x));
-        if (h > 0.0) add_heap_column(p, k, h);
-    }
+    const ParticleStore p = heap_on_layer(
+        x_toe_pro, x_toe_retro, [&](double x) { return std::min(ta * (x - x_toe_pro), tb * (x_toe_retro - x)); });
 
     // Toe threshold 0.15 m = 0.3 h0: the threshold line is crossed at least
     // 3 columns inside the geometric toe for both slopes (0.15 / tan 40° =
@@ -123,6 +133,16 @@ void check_triangular_wedge(const WedgeCase& wc) {
                 wc.alpha_deg, bound_a, m.beta_deg, wc.beta_deg, bound_b);
     EXPECT_NEAR(m.alpha_deg, wc.alpha_deg, 0.5);
     EXPECT_NEAR(m.beta_deg, wc.beta_deg, 0.5);
+    // A straight retroside in two pieces: every split fits both pieces
+    // exactly, so both slopes are β (same tolerance), when the retroside is
+    // wide enough for two segments of h0 each (plus a column between them).
+    const double retro_span = (wc.height - thr) / tb;
+    if (retro_span > 2.0 * kH0 + 2.0 * kColumn) {
+        EXPECT_NEAR(m.beta_inner_deg, wc.beta_deg, 0.5);
+        EXPECT_NEAR(m.beta_outer_deg, wc.beta_deg, 0.5);
+    } else if (retro_span < 2.0 * kH0) {
+        EXPECT_TRUE(std::isnan(m.beta_inner_deg) && std::isnan(m.beta_outer_deg) && std::isnan(m.retro_break_x));
+    }
 
     // H: the peak disc centre sits at y_mean + height (both on centres), so
     // H is exact up to round-off; the tolerance r/2 is below one disc radius,
@@ -322,3 +342,61 @@ TEST(WedgeProfile, PlateAtTheTrailingWallOnlyOnceTheWedgeHasGrown) {
     EXPECT_FALSE(plate_at_trailing_wall(far, -10.0, pp.h0, 0.5));
 }
 
+
+TEST(WedgeProfile, TwoLinesFitRecoversBothSlopesAndTheBreak) {
+    // y = 10 - 0.5 x up to the kink at x = 12, then 4 - 0.1 (x - 12): the
+    // kink point lies on both lines, so the splits before and after it both
+    // fit exactly (zero residual); the break is x = 12 or 13.
+    std::vector<double> x, y;
+    for (int k = 0; k < 30; ++k) {
+        x.push_back(k);
+        y.push_back(k <= 12 ? 10.0 - 0.5 * k : 4.0 - 0.1 * (k - 12));
+    }
+    const TwoLineFit f = fit_two_lines(x, y, 3.0, 3);
+    EXPECT_NEAR(f.slope_inner, -0.5, 1e-9);
+    EXPECT_NEAR(f.slope_outer, -0.1, 1e-9);
+    EXPECT_GE(f.break_x, 12.0);
+    EXPECT_LE(f.break_x, 13.0);
+
+    // Bounded noise ±e (alternating): a least-squares slope over n equally
+    // spaced points moves by at most e Σ|x_i − x̄| / Σ(x_i − x̄)² ≈ 3 e / n;
+    // the shorter segment has n = 12 (or 13), so 3 e / 12 bounds both.
+    const double e = 0.05;
+    std::vector<double> noisy = y;
+    for (std::size_t k = 0; k < noisy.size(); ++k) noisy[k] += (k % 2 ? e : -e);
+    const TwoLineFit g = fit_two_lines(x, noisy, 3.0, 3);
+    EXPECT_NEAR(g.slope_inner, -0.5, 3.0 * e / 12.0);
+    EXPECT_NEAR(g.slope_outer, -0.1, 3.0 * e / 12.0);
+    EXPECT_NEAR(g.break_x, 12.5, 1.5);
+
+    // Too short for two segments of the minimum width: no fit.
+    const TwoLineFit none = fit_two_lines(x, y, 15.0, 3);
+    EXPECT_TRUE(std::isnan(none.slope_inner) && std::isnan(none.slope_outer) && std::isnan(none.break_x));
+    EXPECT_TRUE(std::isnan(fit_two_lines({0.0, 1.0, 2.0, 3.0, 4.0}, {0, 1, 2, 3, 4}, 0.0, 3).break_x));
+}
+
+TEST(WedgeProfile, RetrosideWithASteepInnerAndAGentleOuterSlope) {
+    // Experiment 3's shape: from the peak a 25° retrowedge over 1.0 m (2 h0),
+    // then a 6° slope down to the undeformed surface (about 5 m, 10 h0). As in
+    // the triangular wedges, every column's surface point lies exactly on one
+    // of the two lines (the kink column's on both), so the split at the kink
+    // fits exactly: both slopes within the triangular cases' 0.5° and the
+    // break within one column of the kink. The single-line β lies between.
+    const double ta = std::tan(rad(15.0)), t1 = std::tan(rad(25.0)), t2 = std::tan(rad(6.0));
+    const int peak_sample = 449;  // x ≈ −3.505 m
+    const double x_peak = sample_x(peak_sample), height = 1.0, inner = 1.0;
+    const double x_kink = x_peak + inner, h_kink = height - t1 * inner;
+    const double x_toe_pro = x_peak - height / ta, x_toe_retro = x_kink + h_kink / t2;
+    const ParticleStore p = heap_on_layer(x_toe_pro, x_toe_retro, [&](double x) {
+        const double retro = x <= x_kink ? height - t1 * (x - x_peak) : h_kink - t2 * (x - x_kink);
+        return std::min(ta * (x - x_toe_pro), retro);
+    });
+    const WedgeMeasures m = measure_wedge(p, params(0.15), 2.0);
+    std::printf("    beta %.3f  inner %.3f (ref 25)  outer %.3f (ref 6)  break %.4f (ref %.4f)\n", m.beta_deg,
+                m.beta_inner_deg, m.beta_outer_deg, m.retro_break_x, x_kink);
+    EXPECT_NEAR(m.beta_inner_deg, 25.0, 0.5);
+    EXPECT_NEAR(m.beta_outer_deg, 6.0, 0.5);
+    EXPECT_NEAR(m.retro_break_x, x_kink, kColumn);
+    EXPECT_GT(m.beta_deg, 6.5);
+    EXPECT_LT(m.beta_deg, 24.5);
+}

@@ -68,6 +68,52 @@ double fit_slope(const std::vector<double>& x, const std::vector<double>& y) {
     return sxx > 0 ? sxy / sxx : std::numeric_limits<double>::quiet_NaN();
 }
 
+namespace {
+/// Running sums of one segment's points (x taken from an origin x0 so that
+/// the centred sums keep their digits).
+struct LineSums {
+    double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+    void add(double x, double y) {
+        n += 1; sx += x; sy += y; sxx += x * x; sxy += x * y; syy += y * y;
+    }
+    LineSums minus(const LineSums& o) const {
+        return {n - o.n, sx - o.sx, sy - o.sy, sxx - o.sxx, sxy - o.sxy, syy - o.syy};
+    }
+    double cxx() const { return sxx - sx * sx / n; }
+    double cxy() const { return sxy - sx * sy / n; }
+    double slope() const { return cxy() / cxx(); }
+    /// Sum of squared residuals about the least-squares line.
+    double sse() const { return std::max(0.0, (syy - sy * sy / n) - cxy() * cxy() / cxx()); }
+};
+}  // namespace
+
+TwoLineFit fit_two_lines(const std::vector<double>& x, const std::vector<double>& y, double min_width,
+                         std::size_t min_points) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    TwoLineFit best{nan, nan, nan, 0};
+    const std::size_t n = x.size();
+    min_points = std::max<std::size_t>(min_points, 2);
+    if (n < 2 * min_points) return best;
+    const double x0 = x.front();
+    std::vector<LineSums> prefix(n + 1);  // prefix[k]: points [0, k)
+    for (std::size_t k = 0; k < n; ++k) {
+        prefix[k + 1] = prefix[k];
+        prefix[k + 1].add(x[k] - x0, y[k]);
+    }
+    double best_sse = std::numeric_limits<double>::infinity();
+    for (std::size_t k = min_points; k + min_points <= n; ++k) {
+        if (x[k - 1] - x.front() < min_width || x.back() - x[k] < min_width) continue;
+        const LineSums inner = prefix[k], outer = prefix[n].minus(prefix[k]);
+        if (!(inner.cxx() > 0.0) || !(outer.cxx() > 0.0)) continue;
+        const double sse = inner.sse() + outer.sse();
+        if (sse < best_sse) {
+            best_sse = sse;
+            best = {inner.slope(), outer.slope(), x[k], k};
+        }
+    }
+    return best;
+}
+
 WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, double shortening) {
     WedgeMeasures m;
     const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -107,13 +153,16 @@ WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, dou
     m.toe_pro_x = column_centre(pp, toe_pro);
     m.toe_retro_x = column_centre(pp, toe_retro);
 
-    auto taper = [&](int a, int b) {
-        std::vector<double> xs, ys;
+    auto surface_points = [&](int a, int b, std::vector<double>& xs, std::vector<double>& ys) {
         for (int c = a; c <= b; ++c)
             if (top[static_cast<std::size_t>(c)] != kEmpty) {
                 xs.push_back(top_x[static_cast<std::size_t>(c)]);
                 ys.push_back(top[static_cast<std::size_t>(c)]);
             }
+    };
+    auto taper = [&](int a, int b) {
+        std::vector<double> xs, ys;
+        surface_points(a, b, xs, ys);
         if (xs.size() < 3) return nan;
         return std::atan(fit_slope(xs, ys)) * 180.0 / std::numbers::pi;
     };
@@ -123,6 +172,19 @@ WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, dou
     m.alpha_deg = toe_pro < alpha_end ? taper(toe_pro, alpha_end) : nan;
     m.beta_deg = (pp.retro_side && toe_retro > peak) ? -taper(peak, toe_retro) : nan;
     if (std::isnan(m.beta_deg)) m.beta_deg = nan;  // never "-nan" in series.csv
+    m.beta_inner_deg = m.beta_outer_deg = m.retro_break_x = nan;
+    if (pp.retro_side && toe_retro > peak) {
+        // The surface points ascend in x (each lies inside its own column),
+        // as fit_two_lines needs.
+        std::vector<double> xs, ys;
+        surface_points(peak, toe_retro, xs, ys);
+        const TwoLineFit f = fit_two_lines(xs, ys, pp.h0, 3);
+        if (!std::isnan(f.break_x)) {
+            m.beta_inner_deg = -std::atan(f.slope_inner) * 180.0 / std::numbers::pi;
+            m.beta_outer_deg = -std::atan(f.slope_outer) * 180.0 / std::numbers::pi;
+            m.retro_break_x = f.break_x;
+        }
+    }
 
     double area = 0.0;
     for (int c = toe_pro; c <= toe_retro; ++c)

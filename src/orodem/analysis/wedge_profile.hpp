@@ -12,6 +12,13 @@
 // peak, in degrees (α = atan slope, β = −atan slope). H = (highest surface
 // centre − y_mean), peak deviation = x of that particle − x_S, both / h0. Dilation D = 100 A_w / A_s with
 // A_w = δx Σ (y_surface − y_mean) between the toes and A_s = shortening · h0.
+// Retroside in two pieces (Experiment 3's second, shallower retrowedge, [53]):
+// the same retroside surface points, peak to toe, split into an inner and an
+// outer straight segment at the break that minimises the summed squared
+// residuals of the two least-squares lines (each segment at least h0 wide
+// and three columns); β_inner and β_outer are their slopes, the break the x
+// of the first outer point. A single straight retrowedge gives β_inner ≈
+// β_outer; a steep retrowedge in front of a long gentle one, β_inner > β_outer.
 #pragma once
 
 #include <vector>
@@ -42,6 +49,9 @@ struct WedgeMeasures {
     double toe_pro_x = 0.0;        // x of the prowedge toe [m]
     double toe_retro_x = 0.0;      // x of the retrowedge toe [m]
     double wedge_area = 0.0;       // A_w [m²]
+    double beta_inner_deg = 0.0;   // retroside slope, peak to the break [deg] (NaN if too short)
+    double beta_outer_deg = 0.0;   // retroside slope, break to the toe [deg] (NaN if too short)
+    double retro_break_x = 0.0;    // x of the break [m] (NaN if too short)
 };
 
 /// Per-column surface heights (highest disc centre; -inf for an empty column).
@@ -62,5 +72,19 @@ bool plate_at_trailing_wall(const WedgeMeasures& m, double wall_x, double h0, do
 
 /// Least-squares slope of y on x.
 double fit_slope(const std::vector<double>& x, const std::vector<double>& y);
+
+/// Two least-squares lines through the points (x sorted ascending): the
+/// split k (inner = points [0, k), outer = [k, n)) with the smallest summed
+/// squared residuals, among the splits that leave each side at least
+/// min_points points spanning at least min_width in x. The first such split
+/// wins a tie. NaN slopes and break when no split qualifies.
+struct TwoLineFit {
+    double slope_inner = 0.0;  // dy/dx of the inner line [-]
+    double slope_outer = 0.0;  // dy/dx of the outer line [-]
+    double break_x = 0.0;      // x of the first outer point [m]
+    std::size_t split = 0;     // index of the first outer point
+};
+TwoLineFit fit_two_lines(const std::vector<double>& x, const std::vector<double>& y, double min_width,
+                         std::size_t min_points);
 
 }  // namespace orodem

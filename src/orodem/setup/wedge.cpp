@@ -25,6 +25,28 @@ void check_belt_speed(const Config& c) {
             c.path, w.v, v_limit, lightest_mass(c), c.numerics.gravity, c.material.k_n, t.dt));
 }
 
+ProfileParams wedge_profile_params(const Config& c) {
+    const WedgeConfig& w = c.wedge;
+    const double h0 = c.packing.h0;
+    const bool backstop = c.run.experiment == "critical-wedge";
+    ProfileParams pp;
+    pp.column = w.column_width;
+    pp.x_min = -(w.s_max + w.pro_margin) * h0;  // the trailing end at the start
+    pp.x_max = backstop ? 0.0 : w.retro_length * h0;
+    pp.h0 = h0;
+    pp.x_s = 0.0;
+    pp.toe_threshold = w.toe_threshold * h0;
+    pp.retro_side = !backstop;
+    pp.backstop_margin = backstop ? 0.5 * h0 : 0.0;  // the backstop's own drag zone
+    return pp;
+}
+
+double undeformed_surface(const ParticleStore& p, const ProfileParams& pp) {
+    // The incoming layer away from both ends: from h0 inside the trailing
+    // end to h0 before the S point.
+    return mean_surface(p, pp.x_min + pp.h0, pp.x_s - pp.h0, pp.column);
+}
+
 WedgeSetup make_wedge(const Config& c, const ParticleStore& layer) {
     const WedgeConfig& w = c.wedge;
     const double h0 = c.packing.h0;
@@ -86,17 +108,9 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer) {
         sim.boundaries.push_back(std::move(fixed));
     }
 
-    ProfileParams& pp = ws.profile;
-    pp.column = w.column_width;
-    pp.x_min = x_pro;
-    pp.x_max = backstop ? 0.0 : x_retro;
-    pp.h0 = h0;
-    pp.x_s = 0.0;
-    pp.toe_threshold = w.toe_threshold * h0;
-    pp.retro_side = !backstop;
-    pp.backstop_margin = backstop ? 0.5 * h0 : 0.0;  // the backstop's own drag zone
+    ws.profile = wedge_profile_params(c);
     // Undeformed surface: the incoming layer away from both ends.
-    pp.y_mean = mean_surface(p, x_pro + h0, -h0, pp.column);
+    ws.profile.y_mean = undeformed_surface(p, ws.profile);
     return ws;
 }
 

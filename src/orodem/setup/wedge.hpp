@@ -43,6 +43,13 @@ struct WedgeSetup {
 /// Throws ConfigError if eq. 6 (v' < m g / (k_n dt)) is violated.
 WedgeSetup make_wedge(const Config& c, const ParticleStore& layer);
 
+/// The measurement parameters of the experiment (SPEC §3) from the config
+/// alone; y_mean is left 0 (undeformed_surface measures it).
+ProfileParams wedge_profile_params(const Config& c);
+/// y_mean: the mean surface-centre height of the incoming layer at the start,
+/// from h0 inside its trailing end to h0 before the S point [m].
+double undeformed_surface(const ParticleStore& p, const ProfileParams& pp);
+
 /// Eq. 6 bound on the belt speed for the lightest disc: m_min g / (k_n dt) [m/s].
 double belt_speed_limit(const Config& c);
 /// Throws ConfigError naming wedge.v and the numbers when v' >= belt_speed_limit.

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "commands.hpp"
 #include "orodem/core/error.hpp"
@@ -13,6 +14,9 @@
 using namespace orodem;
 
 int main(int argc, char** argv) {
+    // Whole lines as they are printed, also into a file or a pipe (a run
+    // started with nohup shows "resuming ..." at once, not at its end).
+    std::setvbuf(stdout, nullptr, _IOLBF, 0);
     CLI::App app{"orodem: discrete element model of doubly vergent orogenic wedges (Naylor et al. 2005)"};
     app.require_subcommand(1);
     app.set_version_flag("--version", ORODEM_VERSION);

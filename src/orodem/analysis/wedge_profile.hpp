@@ -12,7 +12,7 @@
 // peak, in degrees (α = atan slope, β = −atan slope). H = (highest surface
 // centre − y_mean), peak deviation = x of that particle − x_S, both / h0. Dilation D = 100 A_w / A_s with
 // A_w = δx Σ (y_surface − y_mean) between the toes and A_s = shortening · h0.
-// Retroside in two pieces (Experiment 3's second, shallower retrowedge, [53]):
+// Retroside in two pieces (Experiment 3's second, shallower retrowedge, [52]):
 // the same retroside surface points, peak to toe, split into an inner and an
 // outer straight segment at the break that minimises the summed squared
 // residuals of the two least-squares lines (each segment at least h0 wide

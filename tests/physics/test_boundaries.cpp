@@ -81,7 +81,7 @@ struct BeltSim {
 /// A disc at x = -16 m on the base from -64 to 64 m (powers of two, so the
 /// contact point is computed exactly). stop: a smooth fixed vertical wall
 /// touching the disc's front (walls[1]).
-BeltSim belt_sim(double v_belt, double mu_bp, bool stop) {
+BeltSim belt_sim(double v_belt, double mu_bp, bool stop, double drag_gain = 0.0) {
     const double m = disc_mass();
     const LawParams law = default_law();
     const double delta0 = m * kG / law.k_n;
@@ -90,7 +90,7 @@ BeltSim belt_sim(double v_belt, double mu_bp, bool stop) {
     base.open_ends = true;
     b.sim.walls.push_back(base);
     if (stop) b.sim.walls.push_back(segment({-16.0 + kR, 0.0}, {-16.0 + kR, 10.0}));
-    auto traction = std::make_unique<ConveyorTraction>(0, v_belt, mu_bp, 1.0);
+    auto traction = std::make_unique<ConveyorTraction>(0, v_belt, mu_bp, 1.0, drag_gain);
     b.base = traction.get();
     b.sim.boundaries.push_back(std::move(traction));
     b.sim.initialize();
@@ -234,6 +234,63 @@ TEST(ConveyorBase, DiscHeldByWallGetsExactlyMuN) {
     // Normal damping (restitution 0.5: ζ = 0.215, ω = sqrt(k_n/m) = 226/s)
     // decays the bounce as exp(-ζ ω t) = 3e-11 after 0.5 s; 1e-6 is generous.
     EXPECT_NEAR(f_wall / (mu_bp * mg), 1.0, 1e-6);
+}
+
+// The optional uncapped drag γ_d (v' − v), γ_d = g_d m/dt (wedge.drag_gain).
+// On a frictionless base it is the only horizontal force: between force
+// evaluations the half-step slip v' − v shrinks by (1 − g_d), and the full-step
+// velocity (a fixed blend of two consecutive half-step ones) by the same
+// factor, so the slip ratio of consecutive steps is 1 − g_d to round-off.
+TEST(ConveyorBase, DragAloneClosesTheSlipByOneMinusGdPerStep) {
+    const SerialOmp serial;
+    const double v_belt = 0.1, g_d = 0.25;
+    BeltSim b = belt_sim(v_belt, 0.0, false, g_d);
+    Simulation& sim = b.sim;
+    double prev_slip = v_belt, worst = 0.0;
+    int steps = 0;
+    while (prev_slip > 1e-7 * v_belt) {
+        sim.step();
+        const double slip = v_belt - vel_of(sim, 0).x;
+        if (steps > 0) worst = std::max(worst, std::fabs(slip / prev_slip - (1.0 - g_d)));
+        prev_slip = slip;
+        ASSERT_LT(++steps, 200);
+        ASSERT_EQ(b.base->discs_on_base(), 1u);
+        EXPECT_EQ(b.base->discs_sliding(), 1u);  // its capped part is held at μ_bp N = 0 while it slips
+    }
+    std::printf("  mu_bp = 0, g_d = %.2f: slip below 1e-7 v' after %d steps; max |ratio - (1 - g_d)| = %.2e\n", g_d,
+                steps, worst);
+    // 1e-7 v' is reached after ln(1e-7)/ln(0.75) = 56 steps (plus the first
+    // step's half kick); the ratio of two slips >= 1e-8 m/s computed from
+    // velocities of 0.1 m/s carries round-off of 1e-17/1e-8 = 1e-9.
+    EXPECT_LE(steps, 58);
+    EXPECT_LT(worst, 1e-8);
+}
+
+// A held disc (the wall in front of it) transmits the Coulomb cap plus the
+// full drag at zero velocity: μ_bp m g + g_d m v'/dt, carried by the wall.
+TEST(ConveyorBase, DiscHeldByWallGetsMuNPlusTheDrag) {
+    const SerialOmp serial;
+    const double v_belt = 0.1, mu_bp = 0.3, g_d = 0.05;
+    BeltSim b = belt_sim(v_belt, mu_bp, true, g_d);
+    Simulation& sim = b.sim;
+    const double m = disc_mass(), dt = sim.params.dt;
+    const double ref = mu_bp * m * kG + g_d * m * v_belt / dt;
+    const int n_steps = static_cast<int>(std::ceil(0.5 / dt));
+    int not_capped = 0;
+    for (int s = 0; s < n_steps; ++s) {
+        sim.step();
+        if (b.base->discs_sliding() != 1) ++not_capped;
+    }
+    const double f_wall = sim.wall_force(1).x;
+    std::printf("  held disc with drag: wall force %.9g N (ref mu m g + g_d m v'/dt = %.9g N, of which drag %.4g N; "
+                "err %.2e), traction %.9g N\n",
+                f_wall, ref, g_d * m * v_belt / dt, f_wall / ref - 1.0, b.base->total_traction());
+    EXPECT_EQ(not_capped, 0);
+    // The drag is 3.8 times μ m g here, so the stronger push bounces the disc
+    // harder than in DiscHeldByWallGetsExactlyMuN; its decay is the same
+    // exp(-ζ ω t) = 3e-11 over 0.5 s, and the drag itself damps further.
+    EXPECT_NEAR(f_wall / ref, 1.0, 1e-6);
+    EXPECT_NEAR(b.base->total_traction() / ref, 1.0, 1e-6);
 }
 
 // ---------------------------------------------------------------------------

@@ -108,3 +108,29 @@ TEST(ConfigRun, SleepKeysOfTheWedgeTable) {
         }
     }
 }
+
+TEST(ConfigRun, DragGainKeepsTheSumOfGainsBelowTwo) {
+    EXPECT_DOUBLE_EQ(parse_config(kWedge, "run.toml", {}).wedge.drag_gain, 0.0);  // off unless asked for
+    EXPECT_DOUBLE_EQ(parse_config(kWedge + "[wedge]\ndrag_gain = 0.05\n", "run.toml", {}).wedge.drag_gain, 0.05);
+    // Uncapped, the velocity change per step is (g_b + g_d) times the slip:
+    // the allowed drag gain is [0, 2 - traction_gain).
+    struct Case {
+        const char* lines;
+        const char* why;
+    };
+    const Case cases[] = {
+        {"drag_gain = 1.0", "[0, 1)"},
+        {"drag_gain = -0.1", "[0, 1)"},
+        {"traction_gain = 1.5\ndrag_gain = 0.5", "[0, 0.5)"},
+    };
+    for (const Case& k : cases) {
+        try {
+            parse_config(kWedge + "[wedge]\n" + k.lines + "\n", "run.toml", {});
+            ADD_FAILURE() << "accepted: " << k.lines;
+        } catch (const ConfigError& e) {
+            const std::string msg = e.what();
+            EXPECT_NE(msg.find("wedge.drag_gain"), std::string::npos) << msg;
+            EXPECT_NE(msg.find(k.why), std::string::npos) << msg;
+        }
+    }
+}

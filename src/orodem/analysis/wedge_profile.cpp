@@ -90,7 +90,7 @@ struct LineSums {
 TwoLineFit fit_two_lines(const std::vector<double>& x, const std::vector<double>& y, double min_width,
                          std::size_t min_points) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    TwoLineFit best{nan, nan, nan, 0};
+    TwoLineFit best{nan, nan, nan};
     const std::size_t n = x.size();
     min_points = std::max<std::size_t>(min_points, 2);
     if (n < 2 * min_points) return best;
@@ -108,7 +108,7 @@ TwoLineFit fit_two_lines(const std::vector<double>& x, const std::vector<double>
         const double sse = inner.sse() + outer.sse();
         if (sse < best_sse) {
             best_sse = sse;
-            best = {inner.slope(), outer.slope(), x[k], k};
+            best = {inner.slope(), outer.slope(), x[k]};
         }
     }
     return best;

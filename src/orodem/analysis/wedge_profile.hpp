@@ -82,7 +82,6 @@ struct TwoLineFit {
     double slope_inner = 0.0;  // dy/dx of the inner line [-]
     double slope_outer = 0.0;  // dy/dx of the outer line [-]
     double break_x = 0.0;      // x of the first outer point [m]
-    std::size_t split = 0;     // index of the first outer point
 };
 TwoLineFit fit_two_lines(const std::vector<double>& x, const std::vector<double>& y, double min_width,
                          std::size_t min_points);

@@ -15,7 +15,8 @@ void ConveyorTraction::add_forces(Simulation& sim) {
     const WallContactStore& ws = sim.wall_contacts;
     const Wall& w = sim.walls[wall_];
     const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
-    const double gain_over_dt = gain_ / sim.params.dt;  // γ_b / m_i [1/s]
+    const double gain_over_dt = gain_ / sim.params.dt;       // γ_b / m_i [1/s]
+    const double drag_over_dt = drag_gain_ / sim.params.dt;  // γ_d / m_i [1/s]
     const std::vector<std::uint32_t>& discs = sim.wall_discs(wall_);
     const std::size_t n = discs.size();
     traction_.resize(n);  // no allocation once sized
@@ -38,12 +39,14 @@ void ConveyorTraction::add_forces(Simulation& sim) {
             if (normal <= 0.0) continue;
             touching_[c] = 1;  // counted even when it rides exactly at v' (zero traction)
             const double gamma_b = gain_over_dt * p.mass[i];
-            double f = gamma_b * (v_belt_ - dot(p.v[i], u));
+            const double slip = v_belt_ - dot(p.v[i], u);  // [m/s]
+            double f = gamma_b * slip;
             const double cap = mu_b_ * normal;
             if (std::fabs(f) > cap) {
                 f = std::copysign(cap, f);
                 capped_[c] = 1;
             }
+            if (drag_over_dt != 0.0) f += drag_over_dt * p.mass[i] * slip;  // uncapped drag (0 by default)
             traction_[c] = f;
             p.force[i] += f * u;
         }

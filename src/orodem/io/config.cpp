@@ -483,6 +483,9 @@ Config read(const toml::table& root, const std::string& file) {
         if (c.run.experiment == "exp3")
             w.mu_br_over_mu_bp = r.number("mu_br_over_mu_bp", w.mu_br_over_mu_bp, closed(0.0, 1000.0));
         w.traction_gain = r.number("traction_gain", w.traction_gain, {0.0, 1.5, true, false});
+        // Uncapped, a disc's velocity change per step is (g_b + g_d) times its
+        // slip: the sum must stay below 2 (ConveyorTraction).
+        w.drag_gain = r.number("drag_gain", w.drag_gain, {0.0, 2.0 - w.traction_gain, false, true});
         w.pro_margin = r.number("pro_margin", w.pro_margin, {2.0, 1000.0, false, false});
         if (c.run.experiment != "critical-wedge")
             w.retro_length = r.number("retro_length", w.retro_length, {1.0, 1000.0, false, false});

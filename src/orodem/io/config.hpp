@@ -42,6 +42,7 @@ struct WedgeConfig {
     double mu_bp = 0.3;               // proside basal friction μ_bp [-]
     double mu_br_over_mu_bp = 2.0;    // exp3: retroside basal friction μ_br / μ_bp [-]
     double traction_gain = 1.0;       // g_b in the eq. 5 traction γ_b = g_b m_i / dt [-]
+    double drag_gain = 0.0;           // g_d in an uncapped drag γ_d = g_d m_i / dt added to it [-]; 0: none
     double pro_margin = 10.0;         // incoming plate beyond s_max·h0 [h0]
     double retro_length = 8.0;        // retroside layer length [h0] (not for critical-wedge)
     double toe_threshold = 0.1;       // rise above the undeformed surface marking a toe [h0]

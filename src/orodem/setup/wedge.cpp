@@ -99,7 +99,7 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer) {
     sp.tolerance = w.sleep_tolerance * c.packing.r_min;
     sp.buffer = w.sleep_buffer * h0;
 
-    auto base = std::make_unique<ConveyorTraction>(kWallProBase, w.v, w.mu_bp, w.traction_gain);
+    auto base = std::make_unique<ConveyorTraction>(kWallProBase, w.v, w.mu_bp, w.traction_gain, w.drag_gain);
     ws.base = base.get();
     sim.boundaries.push_back(std::move(base));
     if (c.run.experiment == "exp1" || c.run.experiment == "exp2") {

@@ -75,13 +75,17 @@ bool status_of_run(const std::string& dir, bool in_sweep = false) {
     // log.txt: the timestep, the last output line (S and rate) and the last event.
     // The wall time of the pieces whose end line gives it ("... 2482.3 s wall").
     std::string dt_line, last_output, last_event;
+    std::vector<double> rates;  // steps/s of each output line, in log order
     double wall = 0.0;
     int pieces = 0, pieces_timed = 0;
     if (fs::exists(dir + "/log.txt")) {
         std::istringstream log(read_file(dir + "/log.txt"));
         for (std::string line; std::getline(log, line);) {
             if (starts_with(line, "dt = ")) dt_line = line;
-            if (starts_with(line, "S = ")) last_output = line;
+            if (starts_with(line, "S = ")) {
+                last_output = line;
+                rates.push_back(number_after(line, "asleep; "));
+            }
             if (starts_with(line, "orodem ") || starts_with(line, "resumed by")) ++pieces;
             if (is_event(line)) last_event = line;
             if (const std::size_t at = line.find(" s wall"); ends_a_piece(line) && at != std::string::npos) {
@@ -104,7 +108,14 @@ bool status_of_run(const std::string& dir, bool in_sweep = false) {
     }
     const double dt = number_after(dt_line, "dt = ");
     const double S = number_after(last_output, "S = ");
-    const double rate = number_after(last_output, "asleep; ");
+    // The rate of an output line is the wall clock since the one before, so a
+    // run paused (SIGSTOP, a suspended machine) or shared with other work
+    // shows one low rate: the estimate takes the median of the last three
+    // (of two, the higher).
+    const std::size_t n_rates = std::min<std::size_t>(rates.size(), 3);
+    std::vector<double> last_rates(rates.end() - static_cast<std::ptrdiff_t>(n_rates), rates.end());
+    std::sort(last_rates.begin(), last_rates.end());
+    const double rate = last_rates.empty() ? std::nan("") : last_rates[n_rates / 2];
     const double h0 = c.packing.h0, v = c.wedge.v;
     const double total = std::isfinite(dt) ? c.wedge.s_max * h0 / (v * dt) : std::nan("");
 
@@ -147,8 +158,8 @@ bool status_of_run(const std::string& dir, bool in_sweep = false) {
     }
     if (!finished) {
         if (std::isfinite(rate) && rate > 0.0 && std::isfinite(total) && std::isfinite(last_step))
-            fmt::print("rate: {:.0f} steps/s at the last output; about {} left at that rate\n", rate,
-                       duration_text((total - last_step) / rate));
+            fmt::print("rate: {:.0f} steps/s (median of the last {} output{}); about {} left at that rate\n", rate,
+                       n_rates, n_rates == 1 ? "" : "s", duration_text((total - last_step) / rate));
         fmt::print("{}", continue_with);
     }
     return finished;

@@ -373,6 +373,28 @@ TEST_F(Resume, StatusAddsUpTheWallTimeOfThePiecesWhoseEndLineGivesIt) {
     EXPECT_NE(out.find(" in 1 of its 1 piece\n"), std::string::npos) << out;
 }
 
+TEST_F(Resume, StatusEstimatesTheTimeLeftFromTheMedianOfTheLastThreeRates) {
+    // Killed at S = 1.0; its S = 0.5 output came after a pause (20 steps/s).
+    const fs::path dir = root_ / "rate";
+    fs::create_directories(dir);
+    for (const char* f : {"config.toml", "series.csv"}) fs::copy_file(reference_ / f, dir / f);
+    const std::string head =
+        "orodem 0.1.0 run of c.toml (exp1) with 1 threads\n"
+        "dt = 0.0001 s, stability limit 0.001 s (margin 10x), t_c = 20 steps\n"
+        "S = 0.250: H/h0 = 0.1; 0 discs asleep; 700 steps/s\n";
+    write(dir / "log.txt", head +
+                               "S = 0.500: H/h0 = 0.1; 0 discs asleep; 20 steps/s\n"
+                               "S = 0.750: H/h0 = 0.1; 0 discs asleep; 900 steps/s\n"
+                               "S = 1.000: H/h0 = 0.1; 0 discs asleep; 800 steps/s\n");
+    std::string out;
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " status " + quote(dir.string()), &out), 0) << out;
+    EXPECT_NE(out.find("rate: 800 steps/s (median of the last 3 outputs); about "), std::string::npos) << out;
+    // Two outputs, the second after the pause: the higher one.
+    write(dir / "log.txt", head + "S = 0.500: H/h0 = 0.1; 0 discs asleep; 20 steps/s\n");
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " status " + quote(dir.string()), &out), 0) << out;
+    EXPECT_NE(out.find("rate: 700 steps/s (median of the last 2 outputs); about "), std::string::npos) << out;
+}
+
 TEST_F(Resume, StatusSaysHowFarARunGotHowItEndedAndHowToContinueIt) {
     std::string out;
     // A finished run: 100%, its end line, nothing to continue.

@@ -149,6 +149,18 @@ int cmd_check(const CommonArgs& a) {
                    "2 cores{}; plus settling if not cached)\n",
                    duration_text(work / kRate1), duration_text(work / kRate2), kRate1, kRate2,
                    c.wedge.sleep ? "awake " : "", c.wedge.sleep ? ", two thirds of the discs awake" : "");
+        if (c.wedge.drag_gain > 0.0) {
+            // The uncapped drag at full slip, g_d m v'/dt, on a disc of the mean
+            // radius R over the weight rho g h0 2R of a column h0 tall on its
+            // width: pi g_d R v' / (2 g h0 dt). It depends on dt and h0, so a
+            // config scaled to another size needs another g_d for the same drag.
+            const double R = 0.5 * (c.packing.r_min + c.packing.r_max);  // [m]
+            const double drag_over_weight =
+                M_PI * c.wedge.drag_gain * R * c.wedge.v / (2.0 * c.numerics.gravity * c.packing.h0 * t.dt);
+            fmt::print("basal drag at full slip = {:.3g} of the weight of a column h0 tall over a disc of the mean "
+                       "radius (g_d = {:g}; the Coulomb part is at most mu_bp = {:g} of the weight on the base)\n",
+                       drag_over_weight, c.wedge.drag_gain, c.wedge.mu_bp);
+        }
     }
     fmt::print("packing cache          = {}\n", packing_cache_path(c));
     return 0;

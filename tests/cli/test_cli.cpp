@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -241,6 +242,22 @@ TEST_F(Cli, CheckEstimatesTheWorkOfAWedgeRunFromItsStepsDiscsAndSleeping) {
     EXPECT_NEAR(std::stod(off.out.substr(open_off)), steps * discs * 0.8, 2e-3 * steps * discs);
     EXPECT_EQ(off.out.find("awake"), std::string::npos) << off.out;
     EXPECT_HAS(on.out, "estimated run time     = ");
+}
+
+TEST_F(Cli, CheckGivesTheBasalDragAtFullSlipInColumnWeights) {
+    // g_d m v'/dt for a disc of the mean radius R over rho g h0 2R:
+    // pi g_d R v' / (2 g h0 dt), here 0.2 pi 0.75 0.1 / (2 9.81 55 dt).
+    const std::string cfg = quote((fs::path(ORODEM_SOURCE_DIR) / "configs" / "exp1.toml").string());
+    const Result on = orodem("check " + cfg + " --set wedge.drag_gain=0.2"), off = orodem("check " + cfg);
+    ASSERT_EQ(on.status, 0) << on.err;
+    ASSERT_EQ(off.status, 0) << off.err;
+    const std::string key = "basal drag at full slip = ";
+    const std::size_t at = on.out.find(key);
+    ASSERT_NE(at, std::string::npos) << on.out;
+    const double dt = std::stod(on.out.substr(on.out.find("dt                     = ") + 25));
+    const double expected = 0.2 * M_PI * 0.75 * 0.1 / (2.0 * 9.81 * 55.0 * dt);  // 0.231 at dt = 1.89e-4 s
+    EXPECT_NEAR(std::stod(on.out.substr(at + key.size())), expected, 5e-3 * expected);  // printed to 3 digits
+    EXPECT_EQ(off.out.find(key), std::string::npos) << off.out;  // no drag, no line
 }
 
 TEST_F(Cli, EveryShippedConfigPassesCheck) {

@@ -220,6 +220,16 @@ TEST_F(Cli, CoarseTimestepRunsWithAWarning) {
     EXPECT_EQ(fine.err.find("warning"), std::string::npos) << fine.err;
 }
 
+namespace {
+
+/// The number printed right after `key` in `out` (-1 when `key` is absent).
+double number_after(const std::string& out, const std::string& key) {
+    const std::size_t at = out.find(key);
+    return at == std::string::npos ? -1.0 : std::stod(out.substr(at + key.size()));
+}
+
+}  // namespace
+
 TEST_F(Cli, CheckEstimatesTheWorkOfAWedgeRunFromItsStepsDiscsAndSleeping) {
     // Paper-size Experiment 1: S = 8 h0 / (v' dt) steps; the work is steps x
     // discs x 0.8 (the cut to h0) x 2/3 awake with sleeping zones, all awake without.
@@ -227,10 +237,6 @@ TEST_F(Cli, CheckEstimatesTheWorkOfAWedgeRunFromItsStepsDiscsAndSleeping) {
     const Result on = orodem("check " + cfg), off = orodem("check " + cfg + " --set wedge.sleep=false");
     ASSERT_EQ(on.status, 0) << on.err;
     ASSERT_EQ(off.status, 0) << off.err;
-    auto number_after = [](const std::string& out, const std::string& key) {
-        const std::size_t at = out.find(key);
-        return at == std::string::npos ? -1.0 : std::stod(out.substr(at + key.size()));
-    };
     const double dt = number_after(on.out, "dt                     = ");
     const double discs = number_after(on.out, "particles generated    = ");
     const double steps = number_after(on.out, "steps to S = 8       = ");
@@ -252,11 +258,10 @@ TEST_F(Cli, CheckGivesTheBasalDragAtFullSlipInColumnWeights) {
     ASSERT_EQ(on.status, 0) << on.err;
     ASSERT_EQ(off.status, 0) << off.err;
     const std::string key = "basal drag at full slip = ";
-    const std::size_t at = on.out.find(key);
-    ASSERT_NE(at, std::string::npos) << on.out;
-    const double dt = std::stod(on.out.substr(on.out.find("dt                     = ") + 25));
+    ASSERT_NE(on.out.find(key), std::string::npos) << on.out;
+    const double dt = number_after(on.out, "dt                     = ");
     const double expected = 0.2 * M_PI * 0.75 * 0.1 / (2.0 * 9.81 * 55.0 * dt);  // 0.231 at dt = 1.89e-4 s
-    EXPECT_NEAR(std::stod(on.out.substr(at + key.size())), expected, 5e-3 * expected);  // printed to 3 digits
+    EXPECT_NEAR(number_after(on.out, key), expected, 5e-3 * expected);  // printed to 3 digits
     EXPECT_EQ(off.out.find(key), std::string::npos) << off.out;  // no drag, no line
 }
 

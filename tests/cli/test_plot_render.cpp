@@ -352,6 +352,7 @@ TEST_F(PlotRender, ValidateFindingsScriptMeasuresRunsAndTheSpreadOverSeeds) {
     ASSERT_EQ(run(script + " " + quote(a1) + " " + quote(a2), &out), 0) << out;
     EXPECT_HAS(out, "| a1 | 10.0 ± 0.0 | 5.0 ± 0.0 | 20.0 ± 0.0 | 0.50; 0.50 | 0.98 | 90 | +0.10 (+0.10 … +0.10) | +2.50 | never |");
     EXPECT_HAS(out, "| a2 | 10.0 ± 0.0 | 6.0 ± 0.0 | 21.0 ± 0.0 | 0.50; 0.50 | 0.98 | 90 | +0.10 (+0.10 … +0.10) | +2.50 | 5.00 |");
+    EXPECT_HAS(out, "| a1 | 1 | 0 | none |");  // a still peak never switches
     // Seeds a1-a3: stage-2 alpha 6 ± 1 deg; b1 alone borrows that sd:
     // (9 - 6) / sqrt(1/3 + 1/1) = 2.6 standard errors.
     ASSERT_EQ(run(script + " --spread A=" + quote(a1) + "," + quote(a2) + "," + quote(a3) + " B=" + quote(b1), &out), 0)
@@ -364,6 +365,12 @@ TEST_F(PlotRender, ValidateFindingsScriptMeasuresRunsAndTheSpreadOverSeeds) {
     EXPECT_HAS(out, "alpha (S >= 3): B - A = +3.00 deg, +2.6 seed standard errors");
     // beta: (25 - 21) / sqrt(1/3 + 1/1) = 3.5 standard errors.
     EXPECT_HAS(out, "beta (last third): B - A = +4.00 deg, +3.5 seed standard errors");
+    // b1's peak falls from +1.1 to -0.9 h0 (2 h0 >= 0.5) into every even row;
+    // only outputs from S = 1 (row 4) count, so the fall into row 4 (from
+    // S = 0.75) does not: rows 6, 8, ..., 24, ten switches.
+    EXPECT_HAS(out, "| B | 1 | 10 | 1.50 (+1.10 -> -0.90); 2.00 (+1.10 -> -0.90); ");
+    EXPECT_HAS(out, "; 6.00 (+1.10 -> -0.90) |");
+    EXPECT_HAS(out, "| A | 3 | 0 | none |");
     EXPECT_NE(run(script + " --spread A" + " 2>&1", &out), 0);
     EXPECT_HAS(out, "LABEL=RUN_DIR");
 }

@@ -364,17 +364,19 @@ void read_calibrate(Config& c, Section&& section, const std::string& file) {
     k.kinds = r.choices("kinds", {c.packing.kind}, {"discs", "clusters", "hexagonal"});
     if (e == "biaxial" || e == "repose")
         k.mu_values = r.numbers("mu_values", {c.material.mu}, closed(0.0, 10.0), kMaxValues);
+    // A specimen size [m] of at least `times` largest radii, so that it holds a few discs.
+    auto size = [&](const char* key, double def, double times) {
+        const double v = r.number(key, def, positive()), least = times * c.packing.r_max;
+        if (v < least) r.refuse(key, fmt::format("must be at least {:g} r_max = {:g} m", times, least));
+        return v;
+    };
     if (e == "biaxial") {
-        const double r_max = c.packing.r_max;
-        k.width = r.number("width", k.width, positive());
-        if (k.width < 8.0 * r_max) r.refuse("width", fmt::format("must be at least 8 r_max = {:g} m", 8.0 * r_max));
-        k.height = r.number("height", k.height, positive());
-        if (k.height < 8.0 * r_max)
-            r.refuse("height", fmt::format("must be at least 8 r_max = {:g} m", 8.0 * r_max));
+        k.width = size("width", k.width, 8.0);
+        k.height = size("height", k.height, 8.0);
         k.confining_stress = r.number("confining_stress", k.confining_stress, positive());
         k.max_inertial_number = r.number("max_inertial_number", k.max_inertial_number, {0.0, 0.1, true, false});
         // I = ε̇ d sqrt(ρ/σ_3) with the mean disc diameter d = r_min + r_max.
-        const double t_i = (c.packing.r_min + r_max) * std::sqrt(c.material.density / k.confining_stress);
+        const double t_i = (c.packing.r_min + c.packing.r_max) * std::sqrt(c.material.density / k.confining_stress);
         k.strain_rate = r.number("strain_rate", k.strain_rate, non_negative());
         if (k.strain_rate == 0.0) {
             k.strain_rate = k.max_inertial_number / t_i;
@@ -397,23 +399,15 @@ void read_calibrate(Config& c, Section&& section, const std::string& file) {
         k.servo_tolerance = r.number("servo_tolerance", k.servo_tolerance, {0.0, 0.5, true, false});
     } else if (e == "basal-friction") {
         k.mu_bp_values = r.numbers("mu_bp_values", {0.3}, closed(0.0, 10.0), kMaxValues);
-        k.block_length = r.number("block_length", k.block_length, positive());
-        if (k.block_length < 8.0 * c.packing.r_max)
-            r.refuse("block_length", fmt::format("must be at least 8 r_max = {:g} m", 8.0 * c.packing.r_max));
-        k.block_height = r.number("block_height", k.block_height, positive());
-        if (k.block_height < 4.0 * c.packing.r_max)
-            r.refuse("block_height", fmt::format("must be at least 4 r_max = {:g} m", 4.0 * c.packing.r_max));
+        k.block_length = size("block_length", k.block_length, 8.0);
+        k.block_height = size("block_height", k.block_height, 4.0);
         k.belt_speed = r.number("belt_speed", k.belt_speed, positive());
         k.traction_gain = r.number("traction_gain", k.traction_gain, {0.0, 1.5, true, false});
         k.duration = r.number("duration", k.duration, positive());
         k.measure_from = r.number("measure_from", k.measure_from, {0.0, 1.0, false, true});
     } else {  // repose
-        k.column_width = r.number("column_width", k.column_width, positive());
-        if (k.column_width < 4.0 * c.packing.r_max)
-            r.refuse("column_width", fmt::format("must be at least 4 r_max = {:g} m", 4.0 * c.packing.r_max));
-        k.column_height = r.number("column_height", k.column_height, positive());
-        if (k.column_height < 8.0 * c.packing.r_max)
-            r.refuse("column_height", fmt::format("must be at least 8 r_max = {:g} m", 8.0 * c.packing.r_max));
+        k.column_width = size("column_width", k.column_width, 4.0);
+        k.column_height = size("column_height", k.column_height, 8.0);
         k.lift_speed = r.number("lift_speed", k.lift_speed, positive());
         k.fit_from = r.number("fit_from", k.fit_from, {0.0, 1.0, false, true});
         k.fit_to = r.number("fit_to", k.fit_to, {0.0, 1.0, true, false});

@@ -36,21 +36,7 @@ void draw_axes(cairo_t* cr, const Axis& xa, const Axis& ya, double x0, double y0
     cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr, kFont - 1);
     plot::draw_grid(cr, xa, ya, x0, y0, w, h, x_ticks, false);
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_set_line_width(cr, 1.2);
-    cairo_rectangle(cr, x0, y0, w, h);
-    cairo_stroke(cr);
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
-    cairo_set_font_size(cr, kFont + 1);
-    text_at(cr, title, x0, y0 - 12, 0.0, 0.0);
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cr, kFont);
-    text_at(cr, xlabel, x0 + w / 2, y0 + h + 44, 0.5, 0.0);
-    cairo_save(cr);
-    cairo_translate(cr, x0 - kLeft + 18, y0 + h / 2);
-    cairo_rotate(cr, -std::numbers::pi / 2);
-    text_at(cr, ylabel, 0, 0, 0.5, 0.0);
-    cairo_restore(cr);
+    plot::draw_frame(cr, x0, y0, w, h, kLeft, kFont, title, xlabel, ylabel);
 }
 
 void set_dash(cairo_t* cr, bool dashed) {

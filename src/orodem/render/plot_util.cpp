@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -82,6 +83,25 @@ void draw_grid(cairo_t* cr, const Range& xr, const Range& yr, double x0, double 
         if (marks) line(x0 - 5, py(t), x0, py(t));
         text_at(cr, tick_label(t, yr.step), x0 - 8, py(t), 1.0, 0.5);
     }
+}
+
+void draw_frame(cairo_t* cr, double x0, double y0, double w, double h, double left, double font,
+                const std::string& title, const std::string& xlabel, const std::string& ylabel) {
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_set_line_width(cr, 1.2);
+    cairo_rectangle(cr, x0, y0, w, h);
+    cairo_stroke(cr);
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+    cairo_set_font_size(cr, font + 1);
+    text_at(cr, title, x0, y0 - 12, 0.0, 0.0);
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, font);
+    text_at(cr, xlabel, x0 + w / 2, y0 + h + 44, 0.5, 0.0);
+    cairo_save(cr);
+    cairo_translate(cr, x0 - left + 18, y0 + h / 2);
+    cairo_rotate(cr, -std::numbers::pi / 2);
+    text_at(cr, ylabel, 0, 0, 0.5, 0.0);
+    cairo_restore(cr);
 }
 
 cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length) {

@@ -41,6 +41,12 @@ std::string tick_label(double t, double step);
 void draw_grid(cairo_t* cr, const Range& xr, const Range& yr, double x0, double y0, double w, double h,
                bool x_ticks, bool marks);
 
+/// The black frame of the plot area (x0, y0, w, h), its title (bold, font
+/// + 1) above its left end, the x label below it and the y label turned
+/// upright 18 px inside the left margin `left` [px], labels at `font` [pt].
+void draw_frame(cairo_t* cr, double x0, double y0, double w, double h, double left, double font,
+                const std::string& title, const std::string& xlabel, const std::string& ylabel);
+
 /// cairo write function appending to the std::string* closure.
 cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length);
 

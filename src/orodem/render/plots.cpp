@@ -150,22 +150,7 @@ void draw_panel(cairo_t* cr, const Panel& p, const Range& xr, double x0, double 
     cairo_set_dash(cr, nullptr, 0, 0.0);
     cairo_restore(cr);
 
-    // Frame, titles, axis labels.
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_set_line_width(cr, 1.2);
-    cairo_rectangle(cr, x0, y0, w, h);
-    cairo_stroke(cr);
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
-    cairo_set_font_size(cr, kFont + 1);
-    text_at(cr, p.title, x0, y0 - 12, 0.0, 0.0);
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cr, kFont);
-    text_at(cr, "S (shortening / h0)", x0 + w / 2, y0 + h + 44, 0.5, 0.0);
-    cairo_save(cr);
-    cairo_translate(cr, x0 - kPanelLeft + 18, y0 + h / 2);
-    cairo_rotate(cr, -std::numbers::pi / 2);
-    text_at(cr, p.ylabel, 0, 0, 0.5, 0.0);
-    cairo_restore(cr);
+    plot::draw_frame(cr, x0, y0, w, h, kPanelLeft, kFont, p.title, "S (shortening / h0)", p.ylabel);
 
     if (p.taper_key) {  // which line is which angle: in black, above the frame's right end
         const double kx = x0 + w - 120, ky = y0 - 17;

@@ -349,6 +349,12 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
     const std::uint64_t total_steps = n_outputs * steps_per_output;
     const std::uint64_t first_step = sim.step_count;
     Progress progress;
+    // The rate logged with each output is over the interval since the previous
+    // output (or since this piece began): `orodem status` takes the median of
+    // the last few as the current speed, which a mean since the start overstates
+    // once the wedge has woken more discs.
+    std::uint64_t rate_from_step = first_step;  // [-]
+    double rate_from_secs = 0.0;                // wall time since this piece began [s]
 
     // Health limits (docs/reliability.md): the domain is the box between the
     // end walls (2 h0 beyond) from h0 below the base up to the height of all
@@ -434,7 +440,10 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
                                 m.retro_break_x / h0),
                                 series_columns));
         const double secs = progress.elapsed();
-        const double rate = static_cast<double>(sim.step_count - first_step) / std::max(secs, 1e-9);
+        const double rate =
+            static_cast<double>(sim.step_count - rate_from_step) / std::max(secs - rate_from_secs, 1e-9);
+        rate_from_step = sim.step_count;
+        rate_from_secs = secs;
         log.line(fmt::format("S = {:.3f}: H/h0 = {:.3f}, alpha = {:.2f}, beta = {:.2f}; health: max overlap/R = {:.4f}, "
                              "max speed = {:.3g} m/s, contacts/disc = {:.2f}; {} discs asleep; {:.0f} steps/s",
                              S, m.H_over_h0, m.alpha_deg, m.beta_deg, sim.max_overlap_ratio(), sim.max_speed(),

@@ -30,16 +30,6 @@ namespace {
 
 bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
-/// The log lines that end a piece of a run (commands.cpp writes them).
-constexpr const char* kEndLines[] = {"finished:", "interrupted by", "stopped at the wall-time limit", "STOPPED:",
-                                     "UNSTABLE:"};
-
-bool ends_a_piece(const std::string& line) {
-    for (const char* e : kEndLines)
-        if (starts_with(line, e)) return true;
-    return false;
-}
-
 /// A line that starts or ends a piece (what last_run_event returns).
 bool is_event(const std::string& line) { return ends_a_piece(line) || starts_with(line, "resumed by"); }
 

@@ -76,6 +76,12 @@ Config load(const CommonArgs& a) {
     return load_config(a.config, ov);
 }
 
+bool ends_a_piece(const std::string& line) {
+    for (const char* e : {"finished:", "interrupted by", "stopped at the wall-time limit", "STOPPED:", "UNSTABLE:"})
+        if (line.rfind(e, 0) == 0) return true;
+    return false;
+}
+
 namespace {
 
 /// "integrate 6.1%, rebuild 0.4%, ..." with the seconds per phase of step().
@@ -682,9 +688,21 @@ int resume_run(const Config& c, const std::string& dir) {
     std::vector<std::string> notes;
     const std::string path = restore_newest_checkpoint(dir + "/checkpoint", config_hash(c), w.sim, st, &notes);
     for (const auto& n : notes) fmt::print(stderr, "orodem: warning: {}\n", n);
+    // log.txt beyond the checkpoint: the rows and warnings that the resumed
+    // run writes again, and the previous piece's end line (a signal, a time
+    // limit) with its phase times. Those two are history, not state: kept, so
+    // that the log and orodem status show how each piece ended and ran.
+    std::vector<std::string> piece_end;
+    {
+        const std::string log_text = read_file(dir + "/log.txt");
+        std::istringstream tail(log_text.size() > st.log_bytes ? log_text.substr(st.log_bytes) : std::string());
+        for (std::string line; std::getline(tail, line);)
+            if (ends_a_piece(line) || line.rfind("step phases (this process)", 0) == 0) piece_end.push_back(line);
+    }
     truncate_to(dir + "/series.csv", st.series_bytes);
     truncate_to(dir + "/log.txt", st.log_bytes);
     LineFile log(dir + "/log.txt");
+    for (const auto& line : piece_end) log.line(line);
     for (const auto& n : notes) log.line("warning: " + n);
     log.line(fmt::format("resumed by orodem {} from {} at step {} (S = {:.4f}) with {} threads", ORODEM_VERSION, path,
                          w.sim.step_count, c.wedge.v * w.sim.time / c.packing.h0, omp_get_max_threads()));

@@ -36,6 +36,10 @@ int start_run_in(const Config& c, const std::string& dir);
 /// Continues the wedge run in dir from its newest usable checkpoint (from the
 /// beginning when it has none); c must be its config.
 int resume_run(const Config& c, const std::string& dir);
+/// A log.txt line that ends a piece of a run ("finished: ... s wall",
+/// "interrupted by ...", a wall-time or health stop): written by the run
+/// loop, added up by orodem status, kept by a resume.
+bool ends_a_piece(const std::string& line);
 
 /// SIGINT/SIGTERM while a run or a sweep goes on: the handler only records
 /// the signal; SA_RESETHAND puts the default action back, so a second signal

@@ -86,7 +86,10 @@ TEST_F(Resume, AfterSigtermOutputsAreByteIdenticalToAnUninterruptedRun) {
                          root_ / "B-resume");
     ASSERT_EQ(wait_for(r), 0) << slurp(r.err);
     expect_same_outputs(reference_, run);
-    EXPECT_NE(slurp(run / "log.txt").find("resumed by orodem"), std::string::npos);
+    const std::string log = slurp(run / "log.txt");
+    const std::size_t resumed = log.find("\nresumed by orodem");
+    ASSERT_NE(resumed, std::string::npos) << log;
+    EXPECT_LT(log.find("\ninterrupted by SIGTERM at step "), resumed) << log;  // kept by the resume
     EXPECT_LE(orodem::list_checkpoints((run / "checkpoint").string()).size(), 2u);
 }
 
@@ -344,6 +347,19 @@ TEST_F(Resume, AWallTimeLimitStopsWithExit5AndResumeFinishesTheSameRun) {
                          root_ / "M-resume");
     ASSERT_EQ(wait_for(r), 0) << slurp(r.err);
     expect_same_outputs(reference_, run);
+    // The resume keeps the first piece's end line and phase times (they lie
+    // beyond the checkpoint), so orodem status adds up both pieces.
+    const std::string resumed_log = slurp(run / "log.txt");
+    const std::size_t kept = resumed_log.find("\nstopped at the wall-time limit");
+    const std::size_t phases = resumed_log.find("\nstep phases (this process): ");
+    const std::size_t resumed = resumed_log.find("\nresumed by orodem");
+    ASSERT_NE(kept, std::string::npos) << resumed_log;
+    EXPECT_LT(kept, phases) << resumed_log;
+    EXPECT_LT(phases, resumed) << resumed_log;
+    EXPECT_NE(resumed_log.find("\nfinished: ", resumed), std::string::npos) << resumed_log;
+    std::string out;
+    ASSERT_EQ(cli::run(std::string(ORODEM_EXE) + " status " + quote(run.string()), &out), 0) << out;
+    EXPECT_NE(out.find(" in 2 of its 2 pieces\n"), std::string::npos) << out;
 }
 
 TEST_F(Resume, StatusAddsUpTheWallTimeOfThePiecesWhoseEndLineGivesIt) {

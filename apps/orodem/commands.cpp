@@ -689,20 +689,24 @@ int resume_run(const Config& c, const std::string& dir) {
     const std::string path = restore_newest_checkpoint(dir + "/checkpoint", config_hash(c), w.sim, st, &notes);
     for (const auto& n : notes) fmt::print(stderr, "orodem: warning: {}\n", n);
     // log.txt beyond the checkpoint: the rows and warnings that the resumed
-    // run writes again, and the previous piece's end line (a signal, a time
-    // limit) with its phase times. Those two are history, not state: kept, so
-    // that the log and orodem status show how each piece ended and ran.
-    std::vector<std::string> piece_end;
+    // run writes again, and the history of the pieces since: the previous
+    // piece's end line (a signal, a time limit) with its phase times, and the
+    // start line of a piece killed before its first checkpoint. Those are
+    // kept, so that the log and orodem status show every piece and how it
+    // ended and ran.
+    std::vector<std::string> history;
     {
         const std::string log_text = read_file(dir + "/log.txt");
         std::istringstream tail(log_text.size() > st.log_bytes ? log_text.substr(st.log_bytes) : std::string());
         for (std::string line; std::getline(tail, line);)
-            if (ends_a_piece(line) || line.rfind("step phases (this process)", 0) == 0) piece_end.push_back(line);
+            if (ends_a_piece(line) || line.rfind("resumed by", 0) == 0 ||
+                line.rfind("step phases (this process)", 0) == 0)
+                history.push_back(line);
     }
     truncate_to(dir + "/series.csv", st.series_bytes);
     truncate_to(dir + "/log.txt", st.log_bytes);
     LineFile log(dir + "/log.txt");
-    for (const auto& line : piece_end) log.line(line);
+    for (const auto& line : history) log.line(line);
     for (const auto& n : notes) log.line("warning: " + n);
     log.line(fmt::format("resumed by orodem {} from {} at step {} (S = {:.4f}) with {} threads", ORODEM_VERSION, path,
                          w.sim.step_count, c.wedge.v * w.sim.time / c.packing.h0, omp_get_max_threads()));

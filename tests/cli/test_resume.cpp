@@ -93,6 +93,36 @@ TEST_F(Resume, AfterSigtermOutputsAreByteIdenticalToAnUninterruptedRun) {
     EXPECT_LE(orodem::list_checkpoints((run / "checkpoint").string()).size(), 2u);
 }
 
+TEST_F(Resume, AResumeKeepsThePiecesHistoryButNotTheRowsBeyondTheCheckpoint) {
+    // Piece 1 stopped by SIGTERM; piece 2 (simulated: its start line and one
+    // row appended by hand) killed before its first checkpoint; piece 3 resumes
+    // from piece 1's checkpoint and finishes.
+    const fs::path run = root_ / "P";
+    const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1"}, root_ / "P");
+    ASSERT_TRUE(signal_after_checkpoint(p, run, {SIGTERM})) << "no checkpoint after step 0 appeared: " << slurp(p.err);
+    ASSERT_EQ(wait_for(p), 143) << slurp(p.err);
+    const std::string killed_start = "resumed by orodem 0.0.0 from x.bin at step 1 (S = 0.0000) with 1 threads";
+    {
+        std::ofstream log(run / "log.txt", std::ios::app);
+        log << killed_start << "\nS = 9.999: a row beyond the checkpoint\n";
+    }
+    const Proc r = start({"resume", run.string(), "--threads", "1"}, root_ / "P-resume");
+    ASSERT_EQ(wait_for(r), 0) << slurp(r.err);
+    expect_same_outputs(reference_, run);
+    const std::string log = slurp(run / "log.txt");
+    const std::size_t stop = log.find("\ninterrupted by SIGTERM at step ");
+    const std::size_t killed = log.find("\n" + killed_start + "\n");
+    const std::size_t resumed = log.find("\nresumed by orodem", killed + 1);
+    ASSERT_NE(stop, std::string::npos) << log;
+    ASSERT_NE(killed, std::string::npos) << log;
+    EXPECT_LT(stop, killed) << log;
+    EXPECT_NE(resumed, std::string::npos) << log;
+    EXPECT_EQ(log.find("S = 9.999"), std::string::npos) << log;  // rows beyond the checkpoint are written again
+    std::string out;
+    ASSERT_EQ(cli::run(std::string(ORODEM_EXE) + " status " + quote(run.string()), &out), 0) << out;
+    EXPECT_NE(out.find(" in 2 of its 3 pieces (the others have no end line"), std::string::npos) << out;
+}
+
 TEST_F(Resume, AfterSigintACorruptNewestCheckpointFallsBackToTheOlderOne) {
     const fs::path run = root_ / "C";
     const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1"}, root_ / "C");

@@ -30,9 +30,6 @@ namespace {
 
 bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
-/// A line that starts or ends a piece (what last_run_event returns).
-bool is_event(const std::string& line) { return ends_a_piece(line) || starts_with(line, "resumed by"); }
-
 /// The number after `key` in line (e.g. "dt = 0.00018 s" for key "dt = "); NaN when absent.
 double number_after(const std::string& line, const std::string& key) {
     const std::size_t at = line.find(key);
@@ -77,7 +74,7 @@ bool status_of_run(const std::string& dir, bool in_sweep = false) {
                 rates.push_back(number_after(line, "asleep; "));
             }
             if (starts_with(line, "orodem ") || starts_with(line, "resumed by")) ++pieces;
-            if (is_event(line)) last_event = line;
+            if (starts_or_ends_a_piece(line)) last_event = line;
             if (const std::size_t at = line.find(" s wall"); ends_a_piece(line) && at != std::string::npos) {
                 const std::size_t sp = line.rfind(' ', at - 1);  // the number is the word before " s wall"
                 const double secs = sp == std::string::npos ? std::nan("") : number_after(line.substr(sp + 1), "");
@@ -169,7 +166,7 @@ std::string last_run_event(const std::string& dir) {
     std::string last;
     std::istringstream log(read_file(dir + "/log.txt"));
     for (std::string line; std::getline(log, line);)
-        if (is_event(line)) last = line;
+        if (starts_or_ends_a_piece(line)) last = line;
     return last;
 }
 

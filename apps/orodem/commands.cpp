@@ -82,6 +82,10 @@ bool ends_a_piece(const std::string& line) {
     return false;
 }
 
+bool starts_or_ends_a_piece(const std::string& line) {
+    return ends_a_piece(line) || line.rfind("resumed by", 0) == 0;
+}
+
 namespace {
 
 /// "integrate 6.1%, rebuild 0.4%, ..." with the seconds per phase of step().
@@ -360,7 +364,7 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
     // the last few as the current speed, which a mean since the start overstates
     // once the wedge has woken more discs.
     std::uint64_t rate_from_step = first_step;  // [-]
-    double rate_from_secs = 0.0;                // wall time since this piece began [s]
+    double rate_from_secs = 0.0;                // wall time of the previous output since this piece began [s]
 
     // Health limits (docs/reliability.md): the domain is the box between the
     // end walls (2 h0 beyond) from h0 below the base up to the height of all
@@ -699,8 +703,7 @@ int resume_run(const Config& c, const std::string& dir) {
         const std::string log_text = read_file(dir + "/log.txt");
         std::istringstream tail(log_text.size() > st.log_bytes ? log_text.substr(st.log_bytes) : std::string());
         for (std::string line; std::getline(tail, line);)
-            if (ends_a_piece(line) || line.rfind("resumed by", 0) == 0 ||
-                line.rfind("step phases (this process)", 0) == 0)
+            if (starts_or_ends_a_piece(line) || line.rfind("step phases (this process)", 0) == 0)
                 history.push_back(line);
     }
     truncate_to(dir + "/series.csv", st.series_bytes);

@@ -40,6 +40,8 @@ int resume_run(const Config& c, const std::string& dir);
 /// "interrupted by ...", a wall-time or health stop): written by the run
 /// loop, added up by orodem status, kept by a resume.
 bool ends_a_piece(const std::string& line);
+/// ends_a_piece, or a resumed piece's start line ("resumed by ...").
+bool starts_or_ends_a_piece(const std::string& line);
 
 /// SIGINT/SIGTERM while a run or a sweep goes on: the handler only records
 /// the signal; SA_RESETHAND puts the default action back, so a second signal

@@ -23,6 +23,7 @@
 #include "orodem/setup/calibration.hpp"
 #include "orodem/setup/packing.hpp"
 #include "orodem/setup/scenario.hpp"
+#include "orodem/setup/wedge.hpp"
 
 #include "commands.hpp"
 
@@ -315,23 +316,30 @@ void report_basal(const Config& c, const std::vector<BasalResult>& res, const st
           "horizontal force over the same normal force (the same number once the block's momentum is steady). "
           "Sliding fraction: base discs at the Coulomb cap μ_bp N (the others ride with the belt: the slip is in "
           "the material above them). min γ_b v'/(μ_bp N): the traction a base disc at rest gets over its cap, for "
-          "the most loaded disc at the end; below 1 that disc cannot transmit μ_bp N.\n\n";
+          "the most loaded disc at the end; below 1 that disc cannot transmit μ_bp N (traction law only; the Coulomb "
+          "base has no such limit: nan).\n\n";
     md += "![Effective basal friction against μ_bp](basal-friction.png)\n\n";
     md += "![Effective basal friction against time](basal-friction-series.png)\n\n";
     md += "## Parameters\n\n";
     md += material_lines(c);
     md += fmt::format("- μ_i = {:g}; block {:g} m long, {:g} m thick, settled under gravity g = {:g} m/s² and cut\n",
                       c.material.mu, k.block_length, k.block_height, c.numerics.gravity);
-    md += fmt::format("- belt speed v' = {:g} m/s, traction gain g_b = {:g}; {:g} s of belt motion, measured over "
-                      "t ≥ {:g} s, rows every {:g} s\n\n",
-                      k.belt_speed, k.traction_gain, k.duration, k.measure_from * k.duration,
-                      c.run.output_interval);
-    md += "## Method\n\n"
-          "The settled block rests on the smooth proside base (y = 0) whose ConveyorTraction (eq. 5: F = γ_b (v' − "
-          "v_i) capped at μ_bp N, γ_b = g_b m_i / dt) drags every disc touching it toward a fixed smooth wall at "
-          "the block's right end, as the belt drags the wedge against the backstop; a fixed smooth wall at its "
-          "left end keeps the block's free face from slumping. In steady state the walls' net horizontal force "
-          "is the total basal traction, and the base's normal force is the block's weight.\n\n";
+    const bool traction = k.base_law == "traction";
+    md += fmt::format("- base law {}; belt speed v' = {:g} m/s{}; {:g} s of belt motion, measured over "
+                      "t ≥ {:g} s, rows every {:g} s; dt = {:.4g} s\n\n",
+                      k.base_law, k.belt_speed,
+                      traction ? fmt::format(", traction gain g_b = {:g}", k.traction_gain) : std::string(),
+                      k.duration, k.measure_from * k.duration, c.run.output_interval, timestep_for(c).dt);
+    md += "## Method\n\n";
+    md += traction ? "The settled block rests on the smooth proside base (y = 0) whose ConveyorTraction (eq. 5: F = "
+                     "γ_b (v' − v_i) capped at μ_bp N, γ_b = g_b m_i / dt) drags every disc touching it"
+                   : "The settled block rests on the proside base (y = 0), a Coulomb base (CoulombBase: each disc "
+                     "touching it has a spring-slider against the belt, stiffness k_s, limited by μ_bp N) that "
+                     "carries every disc touching it";
+    md += " toward a fixed smooth wall at the block's right end, as the belt drags the wedge against the backstop; "
+          "a fixed smooth wall at its left end keeps the block's free face from slumping. In steady state the "
+          "walls' net horizontal force is the total basal traction, and the base's normal force is the block's "
+          "weight.\n\n";
     md += "## Files\n\n- [basal-friction.csv](basal-friction.csv): one row per test\n";
     for (const auto& f : files) md += fmt::format("- [{}]({}): the series of one test\n", f, f);
 }
@@ -523,10 +531,13 @@ int check_calibration(const Config& c) {
         const double d = mean_disc_diameter(c);
         fmt::print("strain rate            = {:.4g} 1/s, inertial number I = {:.3g} (limit {:g})\n", k.strain_rate,
                    k.strain_rate * d * std::sqrt(c.material.density / k.confining_stress), k.max_inertial_number);
+    } else if (e == "basal-friction" && k.base_law == "coulomb") {
+        check_base_dashpot(c);
+        fmt::print("belt speed v'          = {:g} m/s (Coulomb base)\n", k.belt_speed);
     } else if (e == "basal-friction") {
         const double v_limit = lightest_mass(c) * c.numerics.gravity / (c.material.k_n * t.dt);
-        fmt::print("belt speed v'          = {:g} m/s (eq. 6 limit {:.4g} m/s, margin {:.1f}x)\n", k.belt_speed,
-                   v_limit, v_limit / k.belt_speed);
+        fmt::print("belt speed v'          = {:g} m/s (eq. 6 traction base; limit {:.4g} m/s, margin {:.1f}x)\n",
+                   k.belt_speed, v_limit, v_limit / k.belt_speed);
         if (!(k.belt_speed < v_limit))
             throw ConfigError(fmt::format("{}: key 'calibrate.belt_speed' = {:g}: must satisfy eq. 6, v' < m g / "
                                           "(k_n dt) = {:g} m/s",

@@ -108,9 +108,18 @@ void set_threads(const Config& c) {
     if (c.run.threads > 0) omp_set_num_threads(c.run.threads);
 }
 
+std::string short_plate_warning(const Config& c) {
+    const PlateEstimate pe = plate_estimate(c);
+    if (c.wedge.pro_margin >= pe.pro_margin_min) return "";
+    return fmt::format("wedge.pro_margin = {:g} h0 is shorter than the {:.1f} h0 the deformation front may need by "
+                       "S = {:g} (critical taper {:.2f} deg for mu_bp = {:g}; docs/experiments.md \"Plate length\"); "
+                       "raise wedge.pro_margin so that the trailing wall does not push the wedge",
+                       c.wedge.pro_margin, pe.pro_margin_min, c.wedge.s_max, pe.alpha_deg, c.wedge.mu_bp);
+}
+
 void check_runnable(const Config& c) {
     timestep_for(c);
-    if (is_wedge(c)) check_belt_speed(c);
+    if (is_wedge(c)) check_wedge_base(c);
 }
 
 /// A new run directory: `out` if given (must be absent or empty), else
@@ -134,7 +143,7 @@ int cmd_check(const CommonArgs& a) {
     const Config c = load(a);
     if (is_calibration(c)) return check_calibration(c);
     const TimestepInfo t = timestep_for(c);
-    if (is_wedge(c)) check_belt_speed(c);
+    if (is_wedge(c)) check_wedge_base(c);
     const std::size_t n = generated_particle_count(c);
     std::cout << to_toml(c);
     fmt::print("# derived\n");
@@ -145,8 +154,21 @@ int cmd_check(const CommonArgs& a) {
     fmt::print("collision time t_c     = {:.6g} s ({:.1f} steps)\n", t.t_collision, t.t_collision / t.dt);
     if (is_wedge(c)) {
         const double steps = c.wedge.s_max * c.packing.h0 / (c.wedge.v * t.dt);
-        fmt::print("belt speed v'          = {:g} m/s (eq. 6 limit {:.4g} m/s, margin {:.1f}x)\n", c.wedge.v,
-                   belt_speed_limit(c), belt_speed_limit(c) / c.wedge.v);
+        if (c.wedge.base_law == "traction")
+            fmt::print("belt speed v'          = {:g} m/s (eq. 6 traction base; limit {:.4g} m/s, margin {:.1f}x)\n",
+                       c.wedge.v, belt_speed_limit(c), belt_speed_limit(c) / c.wedge.v);
+        else
+            fmt::print("belt speed v'          = {:g} m/s (Coulomb base, mu_bp = {:g})\n", c.wedge.v, c.wedge.mu_bp);
+        fmt::print("inertial number I      = {:.3g} (v'/h0 (r_min + r_max) sqrt(rho / (rho g h0)); quasi-static "
+                   "below 1e-3)\n",
+                   inertial_number(c));
+        const PlateEstimate pe = plate_estimate(c);
+        fmt::print("plate beyond s_max     = {:g} h0 (wedge.pro_margin); the deformation front reaches about {:.1f} h0 "
+                   "from the S point by S = {:g} (critical taper {:.2f} deg for phi = {:.1f} deg, phi_b = {:.1f} deg), "
+                   "so at least {:.1f} h0 is needed\n",
+                   c.wedge.pro_margin, pe.front_h0, c.wedge.s_max, pe.alpha_deg, pe.phi_deg, pe.phi_b_deg,
+                   pe.pro_margin_min);
+        if (const std::string w = short_plate_warning(c); !w.empty()) fmt::print(stderr, "orodem: warning: {}\n", w);
         // Rates of wedge runs on the 2-core development machine per awake
         // disc (docs/benchmarks.md); with sleeping zones about two thirds of
         // the discs are awake on average over S = 0-8 (the intermediate runs).
@@ -747,6 +769,7 @@ int start_run_in(const Config& c, const std::string& dir) {
         coarse.push_back(fmt::format("a collision (t_c = {:.4g} s) spans only {:.1f} steps of dt = {:.4g} s, fewer than "
                                      "20; lower numerics.safety or numerics.dt for accurate contacts",
                                      t.t_collision, t.t_collision / t.dt, t.dt));
+    if (const std::string w = is_wedge(c) ? short_plate_warning(c) : std::string(); !w.empty()) coarse.push_back(w);
     if (is_wedge(c) && c.wedge.v * t.dt > 0.1 * c.packing.r_min)
         coarse.push_back(fmt::format("the belt moves {:.4g} m per step, more than 0.1 r_min = {:.4g} m; lower "
                                      "wedge.v or numerics.dt",

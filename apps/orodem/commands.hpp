@@ -24,7 +24,10 @@ int cmd_run(const CommonArgs& a, const std::string& out_arg, bool resume = false
 
 /// The config of a, its --set and --threads applied (load_config: ConfigError if bad).
 Config load(const CommonArgs& a);
-/// Throws ConfigError unless c can run: a stable timestep, a belt slower than eq. 6.
+/// A one-line warning when the wedge's incoming plate is shorter than
+/// plate_estimate says the deformation front needs; "" otherwise.
+std::string short_plate_warning(const Config& c);
+/// Throws ConfigError unless c can run: a stable timestep, and the base law's checks (check_wedge_base).
 void check_runnable(const Config& c);
 /// Applies run.threads (0: all cores).
 void set_threads(const Config& c);

@@ -254,7 +254,9 @@ TEST_F(Cli, CheckGivesTheBasalDragAtFullSlipInColumnWeights) {
     // g_d m v'/dt for a disc of the mean radius R over rho g h0 2R:
     // pi g_d R v' / (2 g h0 dt), here 0.2 pi 0.75 0.1 / (2 9.81 55 dt).
     const std::string cfg = quote((fs::path(ORODEM_SOURCE_DIR) / "configs" / "exp1.toml").string());
-    const Result on = orodem("check " + cfg + " --set wedge.drag_gain=0.2"), off = orodem("check " + cfg);
+    const std::string traction = " --set wedge.base_law='\"traction\"'";
+    const Result on = orodem("check " + cfg + traction + " --set wedge.drag_gain=0.2"),
+                 off = orodem("check " + cfg + traction);
     ASSERT_EQ(on.status, 0) << on.err;
     ASSERT_EQ(off.status, 0) << off.err;
     const std::string key = "basal drag at full slip = ";

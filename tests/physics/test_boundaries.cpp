@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 
 #include "orodem/boundary/conveyor_traction.hpp"
+#include "orodem/boundary/coulomb_base.hpp"
 #include "orodem/boundary/fixed_retro.hpp"
 #include "orodem/core/error.hpp"
 #include "orodem/io/config.hpp"
@@ -543,7 +544,7 @@ TEST(FixedRetroside, DiscTouchingBaseNeverMovesAgain) {
 namespace {
 
 std::string exp1_text(const std::string& v) {
-    return "[run]\nexperiment = \"exp1\"\n[wedge]\nv = " + v +
+    return "[run]\nexperiment = \"exp1\"\n[wedge]\nbase_law = \"traction\"\nv = " + v +
            "\ns_max = 1.0\npro_margin = 3.0\nretro_length = 2.0\n[packing]\nh0 = 4.0\n";
 }
 
@@ -643,13 +644,24 @@ TEST(WedgeSetup, TinyLayerGeometry) {
     EXPECT_EQ(w.base->v_belt(), v);
     EXPECT_EQ(w.base->mu_b(), c.wedge.mu_bp);
 
-    // The same layer as exp3: the retroside base is the rough Coulomb base.
+    // The same layer as exp3: the retroside base is a stationary Coulomb
+    // base with μ_br (the default law), or a rough wall under the traction law.
     Config c3 = c;
     c3.run.experiment = "exp3";
     const WedgeSetup w3 = make_wedge(c3, layer);
-    EXPECT_TRUE(w3.sim.walls[kWallRetro].rough);
-    EXPECT_DOUBLE_EQ(w3.sim.walls[kWallRetro].mu, c3.wedge.mu_br_over_mu_bp * c3.wedge.mu_bp);
+    EXPECT_FALSE(w3.sim.walls[kWallRetro].rough);
+    ASSERT_NE(w3.retro_base, nullptr);
+    EXPECT_EQ(w3.retro_base->wall(), kWallRetro);
+    EXPECT_EQ(w3.retro_base->v_belt(), 0.0);
+    EXPECT_DOUBLE_EQ(w3.retro_base->mu_b(), c3.wedge.mu_br_over_mu_bp * c3.wedge.mu_bp);
+    EXPECT_EQ(w3.base->name(), "coulomb-base");
     EXPECT_EQ(w3.fixed_retro, nullptr);
+    c3.wedge.base_law = "traction";
+    const WedgeSetup t3 = make_wedge(c3, layer);
+    EXPECT_TRUE(t3.sim.walls[kWallRetro].rough);
+    EXPECT_DOUBLE_EQ(t3.sim.walls[kWallRetro].mu, c3.wedge.mu_br_over_mu_bp * c3.wedge.mu_bp);
+    EXPECT_EQ(t3.retro_base, nullptr);
+    EXPECT_EQ(t3.base->name(), "conveyor-traction");
 }
 
 TEST(WedgeSetup, ConveyorCarriesIncomingPlate) {

@@ -188,7 +188,9 @@ TEST(Checkpoint, CorruptTruncatedOtherVersionAndOtherConfigAreRefused) {
     // A checkpoint of another experiment (no FixedRetroside) does not fit.
     const Config exp3 = parse_config(std::string(kWedgeToml) , "ckpt.toml", {{"run.experiment", "\"exp3\""}});
     WedgeSetup w3 = make_wedge(exp3, ParticleStore{});
-    EXPECT_NE(refusal(good, hash, w3.sim).find("boundaries saved"), std::string::npos) << refusal(good, hash, w3.sim);
+    EXPECT_NE(refusal(good, hash, w3.sim).find("boundary 1 is 'fixed-retroside', the experiment's is 'coulomb-base'"),
+              std::string::npos)
+        << refusal(good, hash, w3.sim);
 }
 
 TEST(Checkpoint, KeepsTheLastTwoAndFallsBackFromACorruptNewest) {

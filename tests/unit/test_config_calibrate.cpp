@@ -175,7 +175,9 @@ TEST(ConfigCalibrate, EveryBadValueIsRefusedNamingKeyAndWhatIsAllowed) {
         {"basal-friction", "block_length = 5.0", "calibrate.block_length", "at least 8 r_max"},
         {"basal-friction", "block_height = 3.0", "calibrate.block_height", "at least 4 r_max"},
         {"basal-friction", "belt_speed = 0.0", "calibrate.belt_speed", "> 0"},
-        {"basal-friction", "traction_gain = 2.0", "calibrate.traction_gain", "(0, 1.5]"},
+        {"basal-friction", "base_law = \"traction\"\ntraction_gain = 2.0", "calibrate.traction_gain", "(0, 1.5]"},
+        {"basal-friction", "traction_gain = 1.0", "calibrate.traction_gain", "applies to the eq. 5 traction only"},
+        {"basal-friction", "base_law = \"viscous\"", "calibrate.base_law", "\"coulomb\", \"traction\""},
         {"basal-friction", "duration = -1.0", "calibrate.duration", "> 0"},
         {"basal-friction", "measure_from = 1.0", "calibrate.measure_from", "[0, 1)"},
         // repose

@@ -106,8 +106,10 @@ TEST(ConfigRun, SleepKeysOfTheWedgeTable) {
 }
 
 TEST(ConfigRun, DragGainKeepsTheSumOfGainsBelowTwo) {
+    const std::string traction = "base_law = \"traction\"\n";
     EXPECT_DOUBLE_EQ(parse_config(kWedge, "run.toml", {}).wedge.drag_gain, 0.0);  // off unless asked for
-    EXPECT_DOUBLE_EQ(parse_config(kWedge + "[wedge]\ndrag_gain = 0.05\n", "run.toml", {}).wedge.drag_gain, 0.05);
+    EXPECT_DOUBLE_EQ(
+        parse_config(kWedge + "[wedge]\n" + traction + "drag_gain = 0.05\n", "run.toml", {}).wedge.drag_gain, 0.05);
     // Uncapped, the velocity change per step is (g_b + g_d) times the slip:
     // the allowed drag gain is [0, 2 - traction_gain).
     struct Case {
@@ -120,8 +122,51 @@ TEST(ConfigRun, DragGainKeepsTheSumOfGainsBelowTwo) {
         {"traction_gain = 1.5\ndrag_gain = 0.5", "[0, 0.5)"},
     };
     for (const Case& k : cases) {
-        const std::string msg = refusal_of("[wedge]\n" + std::string(k.lines) + "\n");
+        const std::string msg = refusal_of("[wedge]\n" + traction + std::string(k.lines) + "\n");
         EXPECT_NE(msg.find("wedge.drag_gain"), std::string::npos) << k.lines << " -> " << msg;
         EXPECT_NE(msg.find(k.why), std::string::npos) << k.lines << " -> " << msg;
     }
+}
+
+// wedge.base_law: "coulomb" by default; the eq. 5 traction's keys only with
+// "traction"; a run directory's config.toml written before the key existed
+// reads as "traction" (the law that run used) and hashes as it did then.
+TEST(ConfigRun, BaseLawDefaultsToCoulombAndTheTractionKeysNeedTraction) {
+    EXPECT_EQ(parse_config(kWedge, "run.toml", {}).wedge.base_law, "coulomb");
+    EXPECT_EQ(parse_config(kWedge + "[wedge]\nbase_law = \"traction\"\n", "run.toml", {}).wedge.base_law, "traction");
+    for (const char* key : {"traction_gain = 1.0", "drag_gain = 0.1"}) {
+        const std::string msg = refusal_of("[wedge]\n" + std::string(key) + "\n");
+        EXPECT_NE(msg.find("applies to the eq. 5 traction only"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("wedge.base_law = \"traction\""), std::string::npos) << msg;
+    }
+    const std::string bad = refusal_of("[wedge]\nbase_law = \"drag\"\n");
+    EXPECT_NE(bad.find("'wedge.base_law'"), std::string::npos) << bad;
+    EXPECT_NE(bad.find("\"coulomb\", \"traction\""), std::string::npos) << bad;
+}
+
+TEST(ConfigRun, AResolvedConfigWithoutBaseLawIsAnOlderRunOnTheTractionBase) {
+    // A run directory's config.toml as the orodem before base_law wrote it:
+    // to_toml of a traction config, with the base_law line taken out.
+    const Config now = parse_config(kWedge + "[wedge]\nbase_law = \"traction\"\n", "run.toml", {});
+    std::string old_text = to_toml(now);
+    const auto at = old_text.find("base_law = 'traction'\n");
+    ASSERT_NE(at, std::string::npos) << old_text;
+    old_text.erase(at, std::string("base_law = 'traction'\n").size());
+    const Config old = parse_config(old_text, "runs/x/config.toml", {});
+    EXPECT_EQ(old.wedge.base_law, "traction");
+    EXPECT_TRUE(old.legacy_base_law);
+    // That orodem hashed the text without the keys at its defaults (the
+    // traction law's gains, and no base_law key): for this all-defaults exp1,
+    // nothing of [wedge] but column_width, the text of today's all-defaults
+    // config (whose default law is dropped and which has no gains).
+    EXPECT_EQ(to_toml_without_defaults(old), to_toml_without_defaults(parse_config(kWedge, "run.toml", {})));
+    // The same text without the header line is a user's config: the default
+    // law, which refuses the traction's gains by name.
+    std::string msg;
+    try {
+        parse_config(old_text.substr(old_text.find("[run]")), "mine.toml", {});
+    } catch (const ConfigError& e) {
+        msg = e.what();
+    }
+    EXPECT_NE(msg.find("applies to the eq. 5 traction only"), std::string::npos) << msg;
 }

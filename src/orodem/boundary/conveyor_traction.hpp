@@ -1,4 +1,4 @@
-// ConveyorTraction: the paper's Coulomb base (eq. 5, [43]). Every disc that
+// ConveyorTraction: the paper's eq. 5 base ([43]; wedge.base_law = "traction"). Every disc that
 // touches the base wall (a wall contact with a positive normal force N) gets
 // the traction F = γ_b (v' − v_i·û) û along the base direction û, capped at
 // μ_b N, so the disc is dragged toward the belt speed v' but can still slide
@@ -28,47 +28,27 @@
 #pragma once
 
 #include <cstddef>
-#include <vector>
 
-#include "orodem/engine/boundary.hpp"
+#include "orodem/boundary/basal_boundary.hpp"
 
 namespace orodem {
 
-class ConveyorTraction : public Boundary {
+class ConveyorTraction : public BasalBoundary {
 public:
     /// wall: index of the base wall in Simulation::walls; v_belt: v' [m/s];
     /// mu_b: basal Coulomb coefficient [-]; gain: g_b in γ_b = g_b m_i / dt [-];
     /// drag_gain: g_d in the uncapped drag γ_d = g_d m_i / dt [-] (0: none).
     ConveyorTraction(std::size_t wall, double v_belt, double mu_b, double gain, double drag_gain = 0.0)
-        : wall_(wall), v_belt_(v_belt), mu_b_(mu_b), gain_(gain), drag_gain_(drag_gain) {}
+        : BasalBoundary(wall, v_belt, mu_b), gain_(gain), drag_gain_(drag_gain) {}
 
     std::string_view name() const override { return "conveyor-traction"; }
+    /// Writes the traction into ParticleStore::force; total_traction() is the
+    /// capped part and the drag together, discs_sliding() those at the cap.
     void add_forces(Simulation& sim) override;
-    /// The last step's outputs (total traction, counts); the per-slot buffers
-    /// are rewritten by every add_forces and need no saving.
-    void save_state(ByteWriter& w) const override;
-    void load_state(ByteReader& r) override;
-
-    /// Sum of the tractions applied this step [N] (x along û; capped part and
-    /// drag together), and the number of discs on the base and of those whose
-    /// capped part is at the Coulomb cap.
-    double total_traction() const { return total_traction_; }
-    std::size_t discs_on_base() const { return on_base_; }
-    std::size_t discs_sliding() const { return sliding_; }
-    double v_belt() const { return v_belt_; }
-    double mu_b() const { return mu_b_; }
 
 private:
-    std::size_t wall_;
-    double v_belt_;   // v' [m/s]
-    double mu_b_;     // μ_b [-]
-    double gain_;     // g_b [-]
+    double gain_;       // g_b [-]
     double drag_gain_;  // g_d [-]
-    std::vector<double> traction_;  // per disc slot, this step [N]
-    std::vector<unsigned char> capped_;
-    std::vector<unsigned char> touching_;  // 1: a positive normal force from the base this step
-    double total_traction_ = 0.0;
-    std::size_t on_base_ = 0, sliding_ = 0;
 };
 
 }  // namespace orodem

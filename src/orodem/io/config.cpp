@@ -17,6 +17,10 @@
 namespace orodem {
 
 namespace {
+constexpr const char* kResolvedHeader = "# orodem resolved config: every key with its final value (defaults written out)\n";
+}
+
+namespace {
 
 std::string where(const std::string& file, const toml::source_region& src) {
     if (src.begin.line == 0) return file;
@@ -354,8 +358,26 @@ void apply_override(toml::table& root, const Override& o, const std::string& fil
 /// [calibrate] of a calibration experiment (after [material] and [packing],
 /// whose mu and kind are the defaults of the swept lists). `section` opens a
 /// table in the resolved config.
+/// wedge.base_law or calibrate.base_law. Its default is "coulomb", except in
+/// a run directory's resolved config.toml (resolved_file) that lacks the key:
+/// an older orodem wrote it, whose base was the eq. 5 traction (legacy set).
+std::string read_base_law(Reader& r, const toml::table* in, bool resolved_file, bool& legacy) {
+    const bool old_run = resolved_file && !(in && in->contains("base_law"));
+    if (old_run) legacy = true;
+    return r.choice("base_law", old_run ? "traction" : "coulomb", {"coulomb", "traction"});
+}
+
+/// The eq. 5 traction's own keys are refused under the Coulomb base.
+void refuse_traction_keys(Reader& r, const toml::table* in, const char* table,
+                          std::initializer_list<const char*> keys) {
+    for (const char* key : keys)
+        if (in && in->contains(key))
+            r.refuse(key, fmt::format("applies to the eq. 5 traction only; remove it or set {}.base_law = "
+                                      "\"traction\"", table));
+}
+
 template <class Section>
-void read_calibrate(Config& c, Section&& section, const std::string& file) {
+void read_calibrate(Config& c, Section&& section, const std::string& file, bool resolved_file) {
     auto [in, o] = section("calibrate");
     Reader r(in, "calibrate.", file, *o, toml::source_region{});
     CalibrateConfig& k = c.calibrate;
@@ -402,7 +424,11 @@ void read_calibrate(Config& c, Section&& section, const std::string& file) {
         k.block_length = size("block_length", k.block_length, 8.0);
         k.block_height = size("block_height", k.block_height, 4.0);
         k.belt_speed = r.number("belt_speed", k.belt_speed, positive());
-        k.traction_gain = r.number("traction_gain", k.traction_gain, {0.0, 1.5, true, false});
+        k.base_law = read_base_law(r, in, resolved_file, c.legacy_base_law);
+        if (k.base_law == "traction")
+            k.traction_gain = r.number("traction_gain", k.traction_gain, {0.0, 1.5, true, false});
+        else
+            refuse_traction_keys(r, in, "calibrate", {"traction_gain"});
         k.duration = r.number("duration", k.duration, positive());
         k.measure_from = r.number("measure_from", k.measure_from, {0.0, 1.0, false, true});
     } else {  // repose
@@ -417,7 +443,7 @@ void read_calibrate(Config& c, Section&& section, const std::string& file) {
     r.finish();
 }
 
-Config read(const toml::table& root, const std::string& file) {
+Config read(const toml::table& root, const std::string& file, bool resolved_file) {
     Config c;
     toml::table& out = c.resolved;
     const toml::source_region none{};
@@ -476,10 +502,15 @@ Config read(const toml::table& root, const std::string& file) {
         w.mu_bp = r.number("mu_bp", w.mu_bp, closed(0.0, 10.0));
         if (c.run.experiment == "exp3")
             w.mu_br_over_mu_bp = r.number("mu_br_over_mu_bp", w.mu_br_over_mu_bp, closed(0.0, 1000.0));
-        w.traction_gain = r.number("traction_gain", w.traction_gain, {0.0, 1.5, true, false});
-        // Uncapped, a disc's velocity change per step is (g_b + g_d) times its
-        // slip: the sum must stay below 2 (ConveyorTraction).
-        w.drag_gain = r.number("drag_gain", w.drag_gain, {0.0, 2.0 - w.traction_gain, false, true});
+        w.base_law = read_base_law(r, in, resolved_file, c.legacy_base_law);
+        if (w.base_law == "traction") {
+            w.traction_gain = r.number("traction_gain", w.traction_gain, {0.0, 1.5, true, false});
+            // Uncapped, a disc's velocity change per step is (g_b + g_d) times its
+            // slip: the sum must stay below 2 (ConveyorTraction).
+            w.drag_gain = r.number("drag_gain", w.drag_gain, {0.0, 2.0 - w.traction_gain, false, true});
+        } else {
+            refuse_traction_keys(r, in, "wedge", {"traction_gain", "drag_gain"});
+        }
         w.pro_margin = r.number("pro_margin", w.pro_margin, {2.0, 1000.0, false, false});
         if (c.run.experiment != "critical-wedge")
             w.retro_length = r.number("retro_length", w.retro_length, {1.0, 1000.0, false, false});
@@ -572,7 +603,7 @@ Config read(const toml::table& root, const std::string& file) {
         n.gravity = r.number("gravity", n.gravity, non_negative());
         r.finish();
     }
-    if (is_calibration(c)) read_calibrate(c, section, file);
+    if (is_calibration(c)) read_calibrate(c, section, file, resolved_file);
     else if (const toml::node* n = root.get("calibrate"))
         throw ConfigError(fmt::format("{}: table [calibrate] is only read by the calibration experiments, not "
                                       "run.experiment = \"{}\"; remove it or set run.experiment to biaxial, "
@@ -603,7 +634,9 @@ Config parse_config(const std::string& text, const std::string& name, const std:
         throw ConfigError(fmt::format("{}: not valid TOML: {}", where(name, e.source()), e.description()));
     }
     for (const auto& o : overrides) apply_override(root, o, name);
-    Config c = read(root, name);
+    // A run directory's config.toml (to_toml) starts with this line.
+    const bool resolved_file = text.rfind(kResolvedHeader, 0) == 0;
+    Config c = read(root, name, resolved_file);
     c.path = name;
     return c;
 }
@@ -648,7 +681,7 @@ void emit_table(std::ostringstream& os, const toml::table& t, const std::string&
 
 std::string to_toml(const Config& c) {
     std::ostringstream os;
-    os << "# orodem resolved config: every key with its final value (defaults written out)\n";
+    os << kResolvedHeader;
     emit_table(os, c.resolved, "");
     return os.str();
 }
@@ -674,7 +707,14 @@ std::string to_toml_without_defaults(const Config& c) {
     Config n;
     n.resolved = c.resolved;
     try {
-        const Config d = parse_config(fmt::format("[run]\nexperiment = \"{}\"\n", c.run.experiment), "defaults");
+        // A legacy config (Config::legacy_base_law) is compared with the
+        // defaults of the orodem that wrote it: the traction base, and no
+        // base_law key, so that its text, and the hash of its checkpoints, stay
+        // what they were.
+        std::string defaults = fmt::format("[run]\nexperiment = \"{}\"\n", c.run.experiment);
+        if (c.legacy_base_law)
+            defaults += fmt::format("[{}]\nbase_law = \"traction\"\n", is_calibration(c) ? "calibrate" : "wedge");
+        const Config d = parse_config(defaults, "defaults");
         drop_equal(n.resolved, d.resolved);
     } catch (const ConfigError&) {
         // An experiment without a valid all-defaults config keeps every key.

@@ -41,7 +41,9 @@ struct WedgeConfig {
     double output_ds = 0.25;          // ΔS between outputs (series rows) [-]
     double mu_bp = 0.3;               // proside basal friction μ_bp [-]
     double mu_br_over_mu_bp = 2.0;    // exp3: retroside basal friction μ_br / μ_bp [-]
-    double traction_gain = 1.0;       // g_b in the eq. 5 traction γ_b = g_b m_i / dt [-]
+    std::string base_law = "coulomb"; // proside base: coulomb (spring-slider, static friction μ_bp) | traction
+                                      // (eq. 5 capped by μ_bp N); boundary/basal_boundary.hpp
+    double traction_gain = 1.0;       // traction only: g_b in the eq. 5 traction γ_b = g_b m_i / dt [-]
     double drag_gain = 0.0;           // g_d in an uncapped drag γ_d = g_d m_i / dt added to it [-]; 0: none
     double pro_margin = 10.0;         // incoming plate beyond s_max·h0 [h0]
     double retro_length = 8.0;        // retroside layer length [h0] (not for critical-wedge)
@@ -98,8 +100,9 @@ struct CalibrateConfig {
     // basal-friction: a block held by a fixed wall on the conveyor base
     double block_length = 20.0;            // block length along the base [m]
     double block_height = 10.0;            // block thickness [m]
-    double belt_speed = 0.1;               // belt speed v' [m/s] (eq. 6 checked)
-    double traction_gain = 1.0;            // g_b in the eq. 5 traction γ_b = g_b m_i / dt [-]
+    double belt_speed = 0.1;               // belt speed v' [m/s] (eq. 6 checked for the traction law)
+    std::string base_law = "coulomb";      // coulomb | traction, as wedge.base_law
+    double traction_gain = 1.0;            // traction only: g_b in the eq. 5 traction γ_b = g_b m_i / dt [-]
     double duration = 10.0;                // belt running time [s]
     double measure_from = 0.5;             // the measurement averages over t in [measure_from · duration, duration] [-]
     // repose: a column released by lifting its side walls onto a floor of fixed discs
@@ -126,6 +129,11 @@ struct Config {
     NumericsConfig numerics;
     CalibrateConfig calibrate;        // calibration experiments only
     toml::table resolved;             // every key with its final value
+    // A run directory's config.toml written before base_law existed (orodem
+    // 0.x up to the Coulomb base) has no base_law key: it is read as
+    // base_law = "traction", the law that run used, and hashed as that
+    // orodem hashed it (io/checkpoint.cpp config_hash), so it still resumes.
+    bool legacy_base_law = false;
 };
 
 /// True for the calibration experiments (orodem calibrate): biaxial, basal-friction, repose.

@@ -103,3 +103,36 @@ inline PairForce eval_contact(const LawParams& p, const PairKinematics& k, doubl
 }
 
 }  // namespace orodem
+
+namespace orodem {
+
+/// The result of the base spring for one disc and one step.
+struct BaseSpringForce {
+    double f;       // tangential force on the disc along the base direction û [N]
+    bool sliding;   // true: |F_t| was capped at μ N this step
+};
+
+/// The Coulomb base law (SPEC §2; boundary/coulomb_base.hpp): a spring-slider
+/// between a disc's centre and the belt surface, along the base direction û.
+/// slip = v_i·û − v' is the disc centre's velocity relative to the belt [m/s];
+/// ξ (along û) += slip dt; F = −k_s ξ − γ_s slip, limited by μ N (N the
+/// base's normal force on the disc, ≥ 0). On sliding ξ is rescaled as in
+/// eval_contact, so the spring plus the dashpot sits on the limit and the
+/// disc slides with friction μ N. A disc whose force stays below μ N never
+/// slips: its centre moves at v' up to the spring's elastic stretch ξ ≤ μ N / k_s.
+inline BaseSpringForce eval_base_spring(double k_s, double gamma_s, double mu, double normal, double slip,
+                                        double dt, double& xi) {
+    xi += dt * slip;
+    double f = -k_s * xi - gamma_s * slip;
+    const double f_max = mu * normal;
+    if (std::fabs(f) > f_max) {
+        const double ratio = f_max / std::fabs(f);
+        const double damp_part = (gamma_s / k_s) * slip;
+        xi = ratio * (xi + damp_part) - damp_part;
+        f = ratio * f;
+        return {f, true};
+    }
+    return {f, false};
+}
+
+}  // namespace orodem

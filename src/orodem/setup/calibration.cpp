@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 
 #include "orodem/boundary/conveyor_traction.hpp"
+#include "orodem/boundary/coulomb_base.hpp"
+#include "orodem/setup/wedge.hpp"
 #include "orodem/boundary/servo_wall.hpp"
 #include "orodem/core/error.hpp"
 #include "orodem/setup/packing.hpp"
@@ -61,7 +63,7 @@ void require_finite(const Simulation& sim, const std::string& what) {
 /// Sums the conveyor's total traction every step (after it was applied), for interval means.
 class TractionMeter : public Boundary {
 public:
-    explicit TractionMeter(const ConveyorTraction& c) : conveyor_(c) {}
+    explicit TractionMeter(const BasalBoundary& c) : conveyor_(c) {}
     std::string_view name() const override { return "traction-meter"; }
     void after_step(Simulation&) override {
         sum_ += conveyor_.total_traction();
@@ -75,7 +77,7 @@ public:
     }
 
 private:
-    const ConveyorTraction& conveyor_;
+    const BasalBoundary& conveyor_;
     double sum_ = 0.0;
     std::uint64_t n_ = 0;
 };
@@ -315,11 +317,13 @@ BasalResult run_basal_block(const Config& c, ParticleStore block, double mu, dou
                             const CalibrationLog& log) {
     const CalibrateConfig& k = c.calibrate;
     const TimestepInfo t = timestep_for(c);
+    const bool traction_law = k.base_law == "traction";
     const double v_limit = lightest_mass(c) * c.numerics.gravity / (c.material.k_n * t.dt);  // eq. 6
-    if (!(k.belt_speed < v_limit))
+    if (traction_law && !(k.belt_speed < v_limit))
         throw ConfigError(fmt::format("{}: key 'calibrate.belt_speed' = {:g}: must satisfy eq. 6, v' < m g / (k_n dt) "
                                       "= {:g} m/s; lower it or material.k_n",
                                       c.path, k.belt_speed, v_limit));
+    check_base_dashpot(c);
     BasalResult res;
     res.mu = mu;
     res.mu_bp = mu_bp;
@@ -346,8 +350,12 @@ BasalResult run_basal_block(const Config& c, ParticleStore block, double mu, dou
     sim.walls.push_back(line_wall({x_lo - 10.0, 0.0}, {1.0, 0.0}));
     sim.walls.push_back(line_wall({x_hi, 0.0}, {0.0, 1.0}));
     sim.walls.push_back(line_wall({x_lo, 0.0}, {0.0, 1.0}));
-    auto base = std::make_unique<ConveyorTraction>(0, k.belt_speed, mu_bp, k.traction_gain);
-    ConveyorTraction& conveyor = *base;
+    std::unique_ptr<BasalBoundary> base;
+    if (traction_law)
+        base = std::make_unique<ConveyorTraction>(0, k.belt_speed, mu_bp, k.traction_gain);
+    else
+        base = std::make_unique<CoulombBase>(0, k.belt_speed, mu_bp);
+    BasalBoundary& conveyor = *base;
     sim.boundaries.push_back(std::move(base));
     auto meter_box = std::make_unique<ServoWalls>(  // measured only, no servo
         std::vector<BoxSide>{{1, {1.0, 0.0}}, {0, {0.0, -1.0}}, {2, {-1.0, 0.0}}}, 0.5);
@@ -388,12 +396,13 @@ BasalResult run_basal_block(const Config& c, ParticleStore block, double mu, dou
     res.mu_walls = window_stats(times, walls, from, k.duration + 1.0);
     res.phi_eff_deg = std::atan(res.mu_eff.mean) * kDeg;
     res.sliding_fraction = window_stats(times, slide, from, k.duration + 1.0).mean;
-    // Can every base disc reach the cap at rest? γ_b v' / (μ_bp N) per disc, the smallest.
-    double worst = std::numeric_limits<double>::infinity();
+    // Traction law: can every base disc reach the cap at rest? γ_b v' / (μ_bp N)
+    // per disc, the smallest (NaN for the Coulomb base, which has no such limit).
+    double worst = traction_law ? std::numeric_limits<double>::infinity() : std::numeric_limits<double>::quiet_NaN();
     const WallContactStore& ws = sim.wall_contacts;
     for (std::size_t i = 0; i < p.size(); ++i)
         for (std::uint32_t q = ws.begin[i]; q < ws.begin[i + 1]; ++q)
-            if (ws.wall[q] == 0 && ws.f[q].y > 0.0 && mu_bp > 0.0)
+            if (traction_law && ws.wall[q] == 0 && ws.f[q].y > 0.0 && mu_bp > 0.0)
                 worst = std::min(worst, k.traction_gain * p.mass[i] / t.dt * k.belt_speed / (mu_bp * ws.f[q].y));
     res.traction_limit_ratio = worst;
     say(log, fmt::format("  μ_bp = {:g}: μ_eff = {:.4f} ± {:.4f} (φ_b = {:.2f}°; walls {:.4f} ± {:.4f}), sliding "

@@ -1,8 +1,14 @@
 #include "orodem/setup/wedge.hpp"
 
+#include <cmath>
+#include <limits>
+#include <optional>
+
 #include <fmt/format.h>
 
+#include "orodem/analysis/critical_taper.hpp"
 #include "orodem/boundary/conveyor_traction.hpp"
+#include "orodem/boundary/coulomb_base.hpp"
 #include "orodem/boundary/fixed_retro.hpp"
 #include "orodem/core/error.hpp"
 #include "orodem/setup/scenario.hpp"
@@ -23,6 +29,64 @@ void check_belt_speed(const Config& c) {
             "{}: key 'wedge.v' = {:g}: must satisfy eq. 6, v' < m g / (k_n dt) = {:g} m/s "
             "(m = {:g} kg lightest disc, g = {:g}, k_n = {:g}, dt = {:g} s); lower wedge.v or material.k_n",
             c.path, w.v, v_limit, lightest_mass(c), c.numerics.gravity, c.material.k_n, t.dt));
+}
+
+void check_base_dashpot(const Config& c) {
+    // The Coulomb base's critically damped dashpot on the lightest disc:
+    // explicit and stable for γ_s dt / m < 2, i.e. 2 ζ sqrt(k_s/m) dt < 2;
+    // kept below 1 for a margin (the automatic dt gives about 0.12).
+    const bool coulomb = is_calibration(c) ? c.calibrate.base_law == "coulomb" : c.wedge.base_law == "coulomb";
+    if (!coulomb) return;
+    const TimestepInfo t = timestep_for(c);
+    const double k_s = c.material.k_n * c.material.k_s_over_k_n;
+    const double rate = 2.0 * kBaseDampingRatio * std::sqrt(k_s / lightest_mass(c)) * t.dt;
+    if (!(rate < 1.0))
+        throw ConfigError(fmt::format("{}: numerics.dt = {:g} s is too long for the Coulomb base's dashpot "
+                                      "(2 sqrt(k_s/m) dt = {:.3g} for the lightest disc, must be below 1); lower "
+                                      "numerics.dt or numerics.safety",
+                                      c.path, t.dt, rate));
+}
+
+void check_wedge_base(const Config& c) {
+    if (c.wedge.base_law == "traction") check_belt_speed(c);
+    check_base_dashpot(c);
+}
+
+double inertial_number(const Config& c) {
+    const double h0 = c.packing.h0;
+    const double shear_rate = c.wedge.v / h0;                       // γ̇ [1/s]
+    const double d = c.packing.r_min + c.packing.r_max;             // mean disc diameter [m]
+    const double P = c.material.density * c.numerics.gravity * h0;  // pressure at the base of the layer [Pa]
+    return shear_rate * d * std::sqrt(c.material.density / P);
+}
+
+double bulk_friction_deg(const std::string& kind, double mu_i) {
+    // φ_cs [deg] at μ_i = 0, 0.1, 0.3, 0.5, 1.0 (biaxial tests, about 1,400 discs, I = 1e-3).
+    static constexpr double kMu[] = {0.0, 0.1, 0.3, 0.5, 1.0};
+    static constexpr double kDiscs[] = {7.2, 12.0, 15.6, 16.8, 16.4};
+    static constexpr double kClusters[] = {9.1, 17.6, 24.4, 30.2, 28.4};
+    const double* phi = kind == "clusters" ? kClusters : kDiscs;
+    if (mu_i >= kMu[4]) return phi[4];
+    std::size_t k = 0;
+    while (mu_i > kMu[k + 1]) ++k;
+    const double f = (mu_i - kMu[k]) / (kMu[k + 1] - kMu[k]);
+    return phi[k] + f * (phi[k + 1] - phi[k]);
+}
+
+PlateEstimate plate_estimate(const Config& c) {
+    constexpr double kDeg = 180.0 / M_PI;
+    PlateEstimate e;
+    e.phi_deg = bulk_friction_deg(c.packing.kind, c.material.mu);
+    e.phi_b_deg = std::min(std::atan(c.wedge.mu_bp) * kDeg, e.phi_deg - 0.5);
+    // φ_b = 0: no friction on the base, the plate is pushed by the trailing
+    // wall alone and no taper forms; the estimate then has no meaning (inf).
+    const std::optional<CriticalTaper> t =
+        e.phi_b_deg > 0.0 ? critical_taper(e.phi_deg, e.phi_b_deg, 0.0) : std::nullopt;
+    e.alpha_deg = t ? t->alpha_min_deg : 0.0;
+    e.front_h0 = e.alpha_deg > 0.0 ? std::sqrt(2.0 * c.wedge.s_max / std::tan(e.alpha_deg / kDeg))
+                                   : std::numeric_limits<double>::infinity();
+    e.pro_margin_min = e.front_h0 + 2.0;
+    return e;
 }
 
 ProfileParams wedge_profile_params(const Config& c) {
@@ -52,7 +116,7 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer) {
     const double h0 = c.packing.h0;
     const bool backstop = c.run.experiment == "critical-wedge";
     const TimestepInfo t = timestep_for(c);
-    check_belt_speed(c);
+    check_wedge_base(c);
 
     WedgeSetup ws;
     ws.pro_length = (w.s_max + w.pro_margin) * h0;
@@ -78,9 +142,12 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer) {
     if (backstop) {
         sim.walls.push_back({{0.0, 0.0}, {0.0, tall}, {}, 0.0, false, false, 0.0});
     } else {
-        const bool coulomb = c.run.experiment == "exp3";
-        Wall retro_base{{0.0, 0.0}, {x_retro + far, 0.0}, {}, 0.0, false, coulomb,
-                        coulomb ? w.mu_br_over_mu_bp * w.mu_bp : 0.0};
+        // exp3's stationary Coulomb base: a rough wall under the eq. 5
+        // traction law (as before the Coulomb base existed), a smooth wall
+        // with a CoulombBase at rest under the default law.
+        const bool rough = c.run.experiment == "exp3" && w.base_law == "traction";
+        Wall retro_base{{0.0, 0.0}, {x_retro + far, 0.0}, {}, 0.0, false, rough,
+                        rough ? w.mu_br_over_mu_bp * w.mu_bp : 0.0};
         retro_base.open_ends = true;
         sim.walls.push_back(retro_base);
     }
@@ -99,9 +166,18 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer) {
     sp.tolerance = w.sleep_tolerance * c.packing.r_min;
     sp.buffer = w.sleep_buffer * h0;
 
-    auto base = std::make_unique<ConveyorTraction>(kWallProBase, w.v, w.mu_bp, w.traction_gain, w.drag_gain);
+    std::unique_ptr<BasalBoundary> base;
+    if (w.base_law == "traction")
+        base = std::make_unique<ConveyorTraction>(kWallProBase, w.v, w.mu_bp, w.traction_gain, w.drag_gain);
+    else
+        base = std::make_unique<CoulombBase>(kWallProBase, w.v, w.mu_bp);
     ws.base = base.get();
     sim.boundaries.push_back(std::move(base));
+    if (c.run.experiment == "exp3" && w.base_law == "coulomb") {
+        auto retro = std::make_unique<CoulombBase>(kWallRetro, 0.0, w.mu_br_over_mu_bp * w.mu_bp);
+        ws.retro_base = retro.get();
+        sim.boundaries.push_back(std::move(retro));
+    }
     if (c.run.experiment == "exp1" || c.run.experiment == "exp2") {
         auto fixed = std::make_unique<FixedRetroside>(kWallRetro);
         ws.fixed_retro = fixed.get();

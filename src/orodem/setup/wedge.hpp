@@ -3,12 +3,14 @@
 // boundaries of the chosen experiment.
 //
 //   walls[0]  proside base, y = 0 from the far proside end to x = 0, open
-//             ends, smooth; ConveyorTraction drags discs on it at +v (eq. 5)
-//             capped by μ_bp N.
+//             ends, smooth; its law (wedge.base_law) carries discs at +v:
+//             CoulombBase (default; spring-slider, friction μ_bp) or
+//             ConveyorTraction (eq. 5 capped by μ_bp N).
 //   walls[1]  retroside base, y = 0 from x = 0 on, open ends: smooth with
-//             FixedRetroside (exp1, exp2), or rough with μ_br = ratio · μ_bp
-//             (exp3, the stationary Coulomb base); for critical-wedge it is
-//             the rigid, vertical, smooth backstop at x = 0 instead.
+//             FixedRetroside (exp1, exp2); exp3's stationary Coulomb base with
+//             μ_br = ratio · μ_bp (smooth with a CoulombBase at rest, or under
+//             the traction law a rough wall); for critical-wedge it is the
+//             rigid, vertical, smooth backstop at x = 0 instead.
 //   walls[2]  far proside wall at the trailing end, moving with the base.
 //   walls[3]  far retroside wall, fixed (not for critical-wedge).
 //
@@ -22,7 +24,8 @@
 
 namespace orodem {
 
-class ConveyorTraction;
+class BasalBoundary;
+class CoulombBase;
 class FixedRetroside;
 
 inline constexpr std::size_t kWallProBase = 0;
@@ -35,12 +38,14 @@ struct WedgeSetup {
     ProfileParams profile;       // measurement parameters, y_mean measured on the layer
     double pro_length = 0.0;     // incoming plate length [m]
     double retro_length = 0.0;   // retroside layer length [m]
-    ConveyorTraction* base = nullptr;        // owned by sim.boundaries
+    BasalBoundary* base = nullptr;           // the proside base law, owned by sim.boundaries
+    CoulombBase* retro_base = nullptr;       // exp3 under the Coulomb law: the retroside base
     FixedRetroside* fixed_retro = nullptr;   // exp1, exp2 only
 };
 
 /// Builds the experiment from the settled layer (discs in [0, L], cut to h0).
-/// Throws ConfigError if eq. 6 (v' < m g / (k_n dt)) is violated.
+/// Throws ConfigError if eq. 6 (v' < m g / (k_n dt)) is violated under the
+/// traction law, or the Coulomb base's dashpot would be unstable.
 WedgeSetup make_wedge(const Config& c, const ParticleStore& layer);
 
 /// The measurement parameters of the experiment (SPEC §3) from the config
@@ -54,5 +59,38 @@ double undeformed_surface(const ParticleStore& p, const ProfileParams& pp);
 double belt_speed_limit(const Config& c);
 /// Throws ConfigError naming wedge.v and the numbers when v' >= belt_speed_limit.
 void check_belt_speed(const Config& c);
+/// The checks of the config's base law: check_belt_speed for the traction
+/// law, check_base_dashpot for the Coulomb base.
+void check_wedge_base(const Config& c);
+/// The inertial number of the convergence, I = γ̇ d sqrt(ρ/P) [-], with the
+/// bulk shear rate γ̇ = v'/h0, d = r_min + r_max and P = ρ g h0, the
+/// lithostatic pressure at the base of the incoming layer (the décollement);
+/// quasi-static below about 1e-3 (docs/experiments.md "Belt speed").
+double inertial_number(const Config& c);
+/// How far the prowedge's deformation front reaches by wedge.s_max, from
+/// critical-taper theory, to size the incoming plate (docs/experiments.md
+/// "Plate length"). The wedge grows at its critical slope α_c (Dahlen's α_min
+/// for β = 0, the bulk friction φ of the material and φ_b = atan μ_bp, capped
+/// 0.5° below φ); all the accreted area S h0² is put in one triangle above the
+/// undeformed surface, ½ L² tan α_c (no retrowedge: an upper bound), so the
+/// front lies L = h0 sqrt(2 S / tan α_c) from the S point, and the plate
+/// beyond s_max h0 must be at least L/h0 + 2 (the trailing wall is h0 from a
+/// toe that the run reports, plus h0 of compacting plate ahead of the toe).
+struct PlateEstimate {
+    double phi_deg = 0.0;         // bulk friction angle used (the calibrated φ_cs of the packing kind at μ_i) [deg]
+    double phi_b_deg = 0.0;       // basal friction angle used [deg]
+    double alpha_deg = 0.0;       // critical slope α_c [deg]
+    double front_h0 = 0.0;        // L / h0 at s_max [-]
+    double pro_margin_min = 0.0;  // the shortest wedge.pro_margin for it [h0]
+};
+PlateEstimate plate_estimate(const Config& c);
+/// Bulk (critical-state) friction angle of a packing kind with contact
+/// friction μ_i, from the biaxial calibration (docs/validation.md
+/// "Calibration"), interpolated linearly in μ_i [deg]. Hexagonal packings
+/// use the discs' row.
+double bulk_friction_deg(const std::string& kind, double mu_i);
+/// Throws ConfigError when dt is too long for the Coulomb base's dashpot
+/// (wedge or calibrate base_law = "coulomb"; nothing for the traction law).
+void check_base_dashpot(const Config& c);
 
 }  // namespace orodem

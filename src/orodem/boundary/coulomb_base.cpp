@@ -1,0 +1,33 @@
+#include "orodem/boundary/coulomb_base.hpp"
+
+#include <cmath>
+
+#include "orodem/engine/simulation.hpp"
+#include "orodem/physics/contact_law.hpp"
+
+namespace orodem {
+
+void CoulombBase::add_forces(Simulation& sim) {
+    ParticleStore& p = sim.particles;
+    WallContactStore& ws = sim.wall_contacts;
+    const Wall& w = sim.walls[wall_];
+    const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
+    const double k_s = sim.params.law.k_s;                         // [N/m]
+    const double damp = 2.0 * kBaseDampingRatio * std::sqrt(k_s);  // γ_s / sqrt(m_i) [sqrt(kg)/s]
+    const double dt = sim.params.dt;
+    for_each_base_contact(sim, [&](std::size_t c, std::size_t i, std::uint32_t k, double normal) {
+        if (normal <= 0.0) {
+            ws.xi[k] = {};  // not pressed on the base: no grip
+            return;
+        }
+        const double slip = dot(p.v[i], u) - v_belt_;  // disc centre relative to the belt [m/s]
+        double xi = dot(ws.xi[k], u);                  // [m]
+        const BaseSpringForce bf = eval_base_spring(k_s, damp * std::sqrt(p.mass[i]), mu_b_, normal, slip, dt, xi);
+        ws.xi[k] = xi * u;
+        ws.f[k] += bf.f * u;
+        p.force[i] += bf.f * u;
+        set_slot(c, bf.f, true, bf.sliding);
+    });
+}
+
+}  // namespace orodem

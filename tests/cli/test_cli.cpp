@@ -250,6 +250,25 @@ TEST_F(Cli, CheckEstimatesTheWorkOfAWedgeRunFromItsStepsDiscsAndSleeping) {
     EXPECT_HAS(on.out, "estimated run time     = ");
 }
 
+TEST_F(Cli, CheckGivesTheInertialNumberAndWarnsOfAShortPlate) {
+    // Paper-size Experiment 1: I = (v'/h0) (r_min + r_max) sqrt(1/(g h0)) =
+    // (0.1/55) 1.5 / sqrt(9.81 55) = 1.17e-4. The plate: the critical taper
+    // of the clusters' phi = 24.4 deg on phi_b = atan 0.1 is 2.40 deg (orodem
+    // taper), so the front reaches h0 sqrt(16 / tan 2.40 deg) = 19.5 h0 by
+    // S = 8 and 21.5 h0 is needed: pro_margin 22 passes, 20 is warned of.
+    const std::string cfg = quote((fs::path(ORODEM_SOURCE_DIR) / "configs" / "exp1.toml").string());
+    const Result ok = orodem("check " + cfg + " --set wedge.mu_bp=0.1");
+    ASSERT_EQ(ok.status, 0) << ok.err;
+    EXPECT_NEAR(number_after(ok.out, "inertial number I      = "), 0.1 / 55.0 * 1.5 / std::sqrt(9.81 * 55.0), 5e-3 * 1.17e-4);  // printed to 3 digits
+    EXPECT_NEAR(number_after(ok.out, "the deformation front reaches about "),
+                std::sqrt(16.0 / std::tan(2.40 * M_PI / 180.0)), 0.1);
+    EXPECT_EQ(ok.err.find("warning"), std::string::npos) << ok.err;
+    const Result short_plate = orodem("check " + cfg + " --set wedge.mu_bp=0.1 --set wedge.pro_margin=20");
+    ASSERT_EQ(short_plate.status, 0) << short_plate.err;
+    EXPECT_HAS(short_plate.err, "warning: wedge.pro_margin = 20 h0 is shorter than the 21.5 h0");
+    EXPECT_HAS(ok.out, "(Coulomb base, mu_bp = 0.1)");
+}
+
 TEST_F(Cli, CheckGivesTheBasalDragAtFullSlipInColumnWeights) {
     // g_d m v'/dt for a disc of the mean radius R over rho g h0 2R:
     // pi g_d R v' / (2 g h0 dt), here 0.2 pi 0.75 0.1 / (2 9.81 55 dt).

@@ -47,23 +47,6 @@ Config load_calibration(const CommonArgs& a) {
     return c;
 }
 
-/// As orodem run: `out` if given (absent or empty), else runs/<stem>, runs/<stem>-2, ...
-std::string new_run_dir(const std::string& out, const std::string& config_path) {
-    auto usable = [](const fs::path& p) { return !fs::exists(p) || (fs::is_directory(p) && fs::is_empty(p)); };
-    if (!out.empty()) {
-        if (!usable(out))
-            throw ConfigError(fmt::format("--out {}: directory exists and is not empty; choose a new directory "
-                                          "(runs are never overwritten)",
-                                          out));
-        return out;
-    }
-    const std::string stem = fs::path(config_path).stem().string();
-    for (int k = 1;; ++k) {
-        const fs::path p = fs::path("runs") / (k == 1 ? stem : fmt::format("{}-{}", stem, k));
-        if (usable(p)) return p.string();
-    }
-}
-
 std::string num(double v) { return fmt::format("{:.6g}", v); }
 
 /// "discs-mu0.3": a file-name part for one test.
@@ -440,7 +423,7 @@ void report_repose(const Config& c, const std::vector<ReposeResult>& res, const 
 int cmd_calibrate(const CommonArgs& a, const std::string& out_arg) {
     const Config c = load_calibration(a);
     if (c.run.threads > 0) omp_set_num_threads(c.run.threads);
-    const std::string dir = new_run_dir(out_arg, c.path);
+    const std::string dir = choose_run_dir(out_arg, c.path);
     make_dirs(dir);
     write_file_atomic(dir + "/config.toml", to_toml(c));
     LineFile log(dir + "/log.txt");

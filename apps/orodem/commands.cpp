@@ -46,18 +46,30 @@ namespace orodem {
 
 namespace {
 
-volatile std::sig_atomic_t g_stop_signal = 0;
+volatile std::sig_atomic_t g_stop_signal = 0;   // the first SIGINT/SIGTERM, 0 while none came
+volatile std::sig_atomic_t g_signal_count = 0;  // how many came
 
-extern "C" void on_stop_signal(int sig) { g_stop_signal = sig; }
+// The first signal asks for a stop with a checkpoint; a second one (an
+// impatient Ctrl-C, or timeout's follow-up) is ignored so that the shutdown
+// checkpoint is written; a third ends the process at once with the signal's
+// default action (signal and raise are async-signal-safe).
+extern "C" void on_stop_signal(int sig) {
+    if (g_stop_signal == 0) g_stop_signal = sig;
+    if (++g_signal_count >= 3) {
+        ::signal(sig, SIG_DFL);
+        ::raise(sig);
+    }
+}
 
 }  // namespace
 
 StopSignals::StopSignals() {
     g_stop_signal = 0;
+    g_signal_count = 0;
     struct sigaction sa {};
     sa.sa_handler = on_stop_signal;
     sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESETHAND | SA_RESTART;
+    sa.sa_flags = SA_RESTART;
     ::sigaction(SIGINT, &sa, &old_int_);
     ::sigaction(SIGTERM, &sa, &old_term_);
 }
@@ -127,6 +139,9 @@ void check_runnable(const Config& c) {
 std::string choose_run_dir(const std::string& out, const std::string& config_path) {
     auto usable = [](const fs::path& p) { return !fs::exists(p) || (fs::is_directory(p) && fs::is_empty(p)); };
     if (!out.empty()) {
+        std::error_code ec;
+        if (fs::exists(out, ec) && !fs::is_directory(out, ec))
+            throw ConfigError(fmt::format("--out {}: is a file, not a directory; choose a new directory", out));
         if (!usable(out))
             throw ConfigError(fmt::format("--out {}: directory exists and is not empty; choose a new directory "
                                           "(runs are never overwritten)", out));
@@ -673,6 +688,14 @@ std::string first_config_difference(const Config& a, const Config& b) {
     return "";
 }
 
+/// Data rows of a series.csv (lines after the header); 0 when it is absent.
+std::size_t series_rows(const std::string& path) {
+    if (!fs::exists(path)) return 0;
+    const std::string text = read_file(path);
+    const auto lines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+    return lines > 0 ? lines - 1 : 0;
+}
+
 /// Cuts a file back to its length at the checkpoint.
 void truncate_to(const std::string& path, std::uint64_t bytes) {
     const std::uint64_t now = file_bytes(path);
@@ -699,6 +722,14 @@ int resume_run(const Config& c, const std::string& dir) {
                                       "orodem run {}/config.toml --out {} --resume",
                                       dir, c.path, first_config_difference(saved, c), dir, dir));
     if (orodem::list_checkpoints(dir + "/checkpoint").empty()) {
+        // Outputs but no checkpoint (checkpoint/ deleted or emptied): they
+        // cannot be continued, and starting again would rewrite them.
+        if (const std::size_t rows = series_rows(dir + "/series.csv"); rows > 0)
+            throw ConfigError(fmt::format(
+                "--resume {}: no checkpoint in {}/checkpoint/, but series.csv has {} output rows; a resume cannot "
+                "continue them and would overwrite them, so nothing was changed. Keep the run as it is, or start "
+                "it again in a new directory: orodem run {}/config.toml --out NEW_DIR",
+                dir, dir, rows, dir));
         // Interrupted before its first checkpoint (while settling): nothing
         // to continue, so the run starts from the beginning in the same place.
         for (const char* partial : {"series.csv", "run.pvd", "snapshots", "figures", "checkpoint"})

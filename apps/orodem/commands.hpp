@@ -47,8 +47,9 @@ bool ends_a_piece(const std::string& line);
 bool starts_or_ends_a_piece(const std::string& line);
 
 /// SIGINT/SIGTERM while a run or a sweep goes on: the handler only records
-/// the signal; SA_RESETHAND puts the default action back, so a second signal
-/// ends the process at once (every file is written atomically or line by
+/// the first signal (the run stops with a checkpoint); a second is ignored
+/// so that the shutdown checkpoint gets written; a third ends the process at
+/// once with the default action (every file is written atomically or line by
 /// line, so nothing is left corrupt; at worst a *.tmp file stays behind).
 class StopSignals {
 public:

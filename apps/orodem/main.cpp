@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
     run->add_option("config", run_args.config, "TOML config file")->required();
     run->add_option("--out", out, "Output directory (new or empty); default runs/<config name>");
     run->add_option("--set", run_args.sets, "Override a config value, e.g. --set material.mu=0.5")->take_all();
-    run->add_option("--threads", run_args.threads, "OpenMP threads (0 = all cores)");
+    run->add_option("--threads", run_args.threads, "OpenMP threads (0 = all cores)")->check(CLI::Range(0, 1024));
     bool resume = false;
     run->add_flag("--resume", resume, "Continue the run in --out DIR from its newest usable checkpoint (same config; "
                                       "the outputs end up as those of an uninterrupted run)");
@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
                                                     "the sweep in a sweep's folder: its finished runs kept, the "
                                                     "interrupted one continued, the rest started");
     resume_cmd->add_option("run_dir", resume_dir, "Run directory, or a sweep's folder")->required();
-    resume_cmd->add_option("--threads", resume_args.threads, "OpenMP threads (0 = all cores)");
+    resume_cmd->add_option("--threads", resume_args.threads, "OpenMP threads (0 = all cores)")->check(CLI::Range(0, 1024));
     int resume_jobs = 1;
     resume_cmd->add_option("--jobs", resume_jobs, "A sweep's runs at once, each in its own process with the cores "
                                                   "shared among them unless --threads is given")
@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
     sweep->add_option("--vary", sweep_vary, "key=v1,v2,..., e.g. wedge.mu_bp=0.1,0.2,0.3")->required();
     sweep->add_option("--out", sweep_out, "Output directory (new or empty); default runs/<config name>-sweep");
     sweep->add_option("--set", sweep_args.sets, "Override a config value")->take_all();
-    sweep->add_option("--threads", sweep_args.threads, "OpenMP threads (0 = all cores)");
+    sweep->add_option("--threads", sweep_args.threads, "OpenMP threads (0 = all cores)")->check(CLI::Range(0, 1024));
     int sweep_jobs = 1;
     sweep->add_option("--jobs", sweep_jobs, "Runs at once, each in its own process with the cores shared among "
                                             "them unless --threads is given")
@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
     calib->add_option("config", calib_args.config, "TOML config file")->required();
     calib->add_option("--out", calib_out, "Output directory (new or empty); default runs/<config name>");
     calib->add_option("--set", calib_args.sets, "Override a config value")->take_all();
-    calib->add_option("--threads", calib_args.threads, "OpenMP threads (0 = all cores)");
+    calib->add_option("--threads", calib_args.threads, "OpenMP threads (0 = all cores)")->check(CLI::Range(0, 1024));
 
     auto* bench = app.add_subcommand("bench", "Performance benchmarks");
     bench->require_subcommand(1);
@@ -137,8 +137,23 @@ int main(int argc, char** argv) {
     int pile_threads = 0;
     pile->add_option("--pile", pile_file, "Start state, 'id x y r' per line")->capture_default_str();
     pile->add_option("--steps", pile_steps, "Timesteps to run")->capture_default_str();
-    pile->add_option("--threads", pile_threads, "OpenMP threads (0 = all cores)");
+    pile->add_option("--threads", pile_threads, "OpenMP threads (0 = all cores)")->check(CLI::Range(0, 1024));
 
+    // A first word that is neither an option nor a command: say so (CLI11
+    // would only say that a subcommand is required).
+    if (argc > 1 && argv[1][0] != '-') {
+        std::string names;
+        bool known = false;
+        for (const CLI::App* sub : app.get_subcommands([](const CLI::App* a) { return !a->get_group().empty(); })) {
+            known = known || sub->get_name() == argv[1];
+            names += (names.empty() ? "" : ", ") + sub->get_name();
+        }
+        if (!known && std::string(argv[1]) != "sweep-member") {
+            fmt::print(stderr, "orodem: error: unknown command '{}'; the commands are {} (orodem --help)\n", argv[1],
+                       names);
+            return static_cast<int>(ExitCode::config);
+        }
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

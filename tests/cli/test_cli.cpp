@@ -250,6 +250,28 @@ TEST_F(Cli, CheckEstimatesTheWorkOfAWedgeRunFromItsStepsDiscsAndSleeping) {
     EXPECT_HAS(on.out, "estimated run time     = ");
 }
 
+// Misleading inputs get a message about the real problem (exit 2, one line).
+TEST_F(Cli, MessagesNameTheRealProblem) {
+    const std::string cfg = quote((fs::path(ORODEM_SOURCE_DIR) / "configs" / "demo" / "exp1.toml").string());
+    struct Case {
+        std::string args, says;
+    } cases[] = {
+        {"frobnicate", "unknown command 'frobnicate'; the commands are run, resume"},
+        {"check " + quote(ORODEM_SOURCE_DIR), "is a directory, not a config file"},
+        {"run " + cfg + " --out " + quote((fs::path(ORODEM_SOURCE_DIR) / "README.md").string()),
+         "README.md: is a file, not a directory"},
+        {"check " + cfg + " --set wedge.v=-1", "--set wedge.v=-1: key 'wedge.v' = -1: must be a number > 0"},
+        {"check " + cfg + " --set wedge.vee=1", "--set wedge.vee=1: unknown key 'wedge.vee'"},
+        {"run " + cfg + " --threads -1", "--threads"},
+        {"resume /nonexistent --threads -3", "--threads"},
+    };
+    for (const Case& k : cases) {
+        const Result r = orodem(k.args);
+        EXPECT_EQ(r.status, 2) << k.args << ": " << r.err;
+        EXPECT_HAS(r.err, k.says);
+    }
+}
+
 TEST_F(Cli, CheckGivesTheInertialNumberAndWarnsOfAShortPlate) {
     // Paper-size Experiment 1: I = (v'/h0) (r_min + r_max) sqrt(1/(g h0)) =
     // (0.1/55) 1.5 / sqrt(9.81 55) = 1.17e-4. The plate: the critical taper

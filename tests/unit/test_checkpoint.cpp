@@ -193,6 +193,36 @@ TEST(Checkpoint, CorruptTruncatedOtherVersionAndOtherConfigAreRefused) {
         << refusal(good, hash, w3.sim);
 }
 
+// A damaged newest checkpoint (truncated after it was written) is not one of
+// the two kept: writing the next keeps the good older one, so a resume
+// always has an intact checkpoint to fall back on.
+TEST(Checkpoint, ATruncatedCheckpointIsNotCountedAmongTheTwoKept) {
+    omp_set_num_threads(1);
+    TempDir tmp;
+    const std::string dir = (tmp.path / "checkpoint").string();
+    const std::uint64_t hash = config_hash(fixture().c);
+    WedgeSetup a = stepped_wedge(100);
+    std::vector<std::string> written;
+    for (int k = 0; k < 2; ++k) {
+        written.push_back(write_checkpoint(dir, a.sim.step_count, encode_checkpoint(a.sim, some_run_state(a.sim), hash)));
+        a.sim.advance(50);
+    }
+    const std::string good_old = written[0];
+    std::filesystem::resize_file(written[1], std::filesystem::file_size(written[1]) / 2);  // the newest, truncated
+    EXPECT_TRUE(checkpoint_file_intact(good_old));
+    EXPECT_FALSE(checkpoint_file_intact(written[1]));
+    const std::string third = write_checkpoint(dir, a.sim.step_count, encode_checkpoint(a.sim, some_run_state(a.sim), hash));
+    EXPECT_TRUE(std::filesystem::exists(good_old)) << "the good older checkpoint was deleted";
+    EXPECT_TRUE(std::filesystem::exists(third));
+    // With a fourth, the two newest intact ones are kept and the rest goes.
+    a.sim.advance(50);
+    const std::string fourth = write_checkpoint(dir, a.sim.step_count, encode_checkpoint(a.sim, some_run_state(a.sim), hash));
+    const auto files = list_checkpoints(dir);
+    ASSERT_EQ(files.size(), 2u);
+    EXPECT_EQ(files[0].second, fourth);
+    EXPECT_EQ(files[1].second, third);
+}
+
 TEST(Checkpoint, KeepsTheLastTwoAndFallsBackFromACorruptNewest) {
     omp_set_num_threads(1);
     TempDir tmp;

@@ -123,7 +123,8 @@ struct Header {
     std::string_view payload;
 };
 
-Header read_header(std::string_view bytes, std::uint64_t expected_hash) {
+/// check_hash = false: the file's own integrity only (magic, version, sizes, checksums).
+Header read_header(std::string_view bytes, std::uint64_t expected_hash, bool check_hash = true) {
     if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
         throw CheckpointError("not an orodem checkpoint (wrong magic bytes)");
     ByteReader r(bytes.substr(sizeof kMagic));
@@ -154,7 +155,7 @@ Header read_header(std::string_view bytes, std::uint64_t expected_hash) {
                                           bytes.size() - start, size));
     h.payload = bytes.substr(start);
     if (fnv(h.payload) != payload_sum) throw CheckpointError("payload checksum mismatch (corrupt file)");
-    if (h.info.config_hash != expected_hash)
+    if (check_hash && h.info.config_hash != expected_hash)
         throw ConfigError(fmt::format("the checkpoint was made with another config (hash {:016x}, this config "
                                       "{:016x}); resume with the run's own config.toml and the same --set values",
                                       h.info.config_hash, expected_hash));
@@ -232,6 +233,15 @@ std::string encode_checkpoint(const Simulation& sim, const RunLoopState& run, st
     std::string out = std::move(h.bytes());
     out += payload;
     return out;
+}
+
+bool checkpoint_file_intact(const std::string& path) {
+    try {
+        read_header(read_file(path), 0, false);
+        return true;
+    } catch (const IoError&) {  // CheckpointError included
+        return false;
+    }
 }
 
 CheckpointInfo verify_checkpoint(std::string_view bytes, std::uint64_t expected_config_hash) {
@@ -411,10 +421,23 @@ std::string write_checkpoint(const std::string& dir, std::uint64_t step, std::st
     make_dirs(dir);
     const std::string path = fmt::format("{}/ckpt-{:012d}.bin", dir, step);
     write_file_atomic(path, bytes);
-    const auto all = list_checkpoints(dir);
-    for (std::size_t k = static_cast<std::size_t>(keep); keep > 0 && k < all.size(); ++k) {
-        std::error_code ec;
-        std::filesystem::remove(all[k].second, ec);  // a leftover old checkpoint is harmless
+    // Read back: a checkpoint is only counted once it is on disk as written.
+    if (read_file(path) != bytes)
+        throw IoError(fmt::format("{}: the checkpoint read back differs from what was written (disk or file system "
+                                  "fault); the older checkpoints are kept",
+                                  path));
+    // Keep the `keep` newest checkpoints that are intact; older ones go. A
+    // damaged file (truncated, altered after it was written) is not counted,
+    // so it can never be the reason a good older one is deleted.
+    if (keep <= 0) return path;
+    int intact = 0;
+    for (const auto& [s, file] : list_checkpoints(dir)) {
+        if (intact >= keep) {
+            std::error_code ec;
+            std::filesystem::remove(file, ec);  // a leftover old checkpoint is harmless
+        } else if (checkpoint_file_intact(file)) {
+            ++intact;
+        }
     }
     return path;
 }

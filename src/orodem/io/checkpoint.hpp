@@ -79,11 +79,16 @@ CheckpointInfo verify_checkpoint(std::string_view bytes, std::uint64_t expected_
 void decode_checkpoint(std::string_view bytes, std::uint64_t expected_config_hash, Simulation& sim,
                        RunLoopState& run);
 
-/// Writes bytes to DIR/ckpt-<step>.bin atomically, then deletes all but the
-/// newest `keep` checkpoints (only after the new one is in place). Returns
-/// the path (keep <= 0: delete none). Throws IoError; a failed write leaves
-/// older checkpoints intact.
+/// Writes bytes to DIR/ckpt-<step>.bin atomically and reads them back, then
+/// deletes the checkpoints older than the newest `keep` intact ones
+/// (checkpoint_file_intact; only after the new one is in place and verified,
+/// and a damaged file never counts as kept). Returns the path (keep <= 0:
+/// delete none). Throws IoError; a failed write leaves older checkpoints intact.
 std::string write_checkpoint(const std::string& dir, std::uint64_t step, std::string_view bytes, int keep = 2);
+
+/// True when the file is an intact checkpoint of this format: magic,
+/// version, sizes and both checksums (the config hash is not looked at).
+bool checkpoint_file_intact(const std::string& path);
 
 /// Checkpoint files in dir (ckpt-<step>.bin), newest (highest step) first.
 std::vector<std::pair<std::uint64_t, std::string>> list_checkpoints(const std::string& dir);

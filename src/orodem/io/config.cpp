@@ -5,6 +5,7 @@
 #include "orodem/io/config.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -23,6 +24,8 @@ constexpr const char* kResolvedHeader = "# orodem resolved config: every key wit
 namespace {
 
 std::string where(const std::string& file, const toml::source_region& src) {
+    // A value given on the command line names its --set, not the file.
+    if (src.path && src.path->rfind("--set ", 0) == 0) return *src.path;
     if (src.begin.line == 0) return file;
     return fmt::format("{}:{}:{}", file, src.begin.line, src.begin.column);
 }
@@ -213,7 +216,7 @@ public:
             std::string allowed;
             for (auto&& [ok, ov] : out_) allowed += fmt::format("{}{}", allowed.empty() ? "" : ", ", ok.str());
             throw ConfigError(fmt::format("{}: unknown key '{}{}' = {}; allowed keys in [{}]: {}",
-                                          where(file_, k.source()), prefix_, k.str(), show(v),
+                                          where(file_, k.source().begin.line ? k.source() : v.source()), prefix_, k.str(), show(v),
                                           prefix_.substr(0, prefix_.size() - 1), allowed));
         }
     }
@@ -331,7 +334,7 @@ void apply_override(toml::table& root, const Override& o, const std::string& fil
         if (non_ascii_toml_cannot_take(doc) != std::string_view::npos)
             throw ConfigError(fmt::format("--set {}={}: a non-ASCII character outside a string value", o.first,
                                           o.second));
-        parsed = toml::parse(std::string_view(doc), std::string_view("--set"));
+        parsed = toml::parse(std::string_view(doc), fmt::format("--set {}={}", o.first, o.second));
     } catch (const toml::parse_error& e) {
         throw ConfigError(fmt::format("--set {}={}: value is not valid TOML ({}); strings need quotes, e.g. --set packing.kind='\"discs\"'",
                                       o.first, o.second, e.description()));
@@ -352,12 +355,9 @@ void apply_override(toml::table& root, const Override& o, const std::string& fil
         t = sub->as_table();
         path.remove_prefix(dot + 1);
     }
-    t->insert_or_assign(std::string(path), *parsed.get("v"));
+    t->insert_or_assign(std::string(path), std::move(*parsed.get("v")));  // a move keeps the value's source (--set)
 }
 
-/// [calibrate] of a calibration experiment (after [material] and [packing],
-/// whose mu and kind are the defaults of the swept lists). `section` opens a
-/// table in the resolved config.
 /// wedge.base_law or calibrate.base_law. Its default is "coulomb", except in
 /// a run directory's resolved config.toml (resolved_file) that lacks the key:
 /// an older orodem wrote it, whose base was the eq. 5 traction (legacy set).
@@ -376,6 +376,9 @@ void refuse_traction_keys(Reader& r, const toml::table* in, const char* table,
                                       "\"traction\"", table));
 }
 
+/// [calibrate] of a calibration experiment (after [material] and [packing],
+/// whose mu and kind are the defaults of the swept lists). `section` opens a
+/// table in the resolved config.
 template <class Section>
 void read_calibrate(Config& c, Section&& section, const std::string& file, bool resolved_file) {
     auto [in, o] = section("calibrate");
@@ -642,6 +645,11 @@ Config parse_config(const std::string& text, const std::string& name, const std:
 }
 
 Config load_config(const std::string& path, const std::vector<Override>& overrides) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw ConfigError(fmt::format("{}: is a directory, not a config file; give a .toml file (a run directory's "
+                                      "own is {}/config.toml)",
+                                      path, path));
     std::ifstream in(path, std::ios::binary);
     if (!in) throw ConfigError(fmt::format("{}: cannot open config file", path));
     std::ostringstream ss;

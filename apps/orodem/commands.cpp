@@ -130,6 +130,7 @@ std::string short_plate_warning(const Config& c) {
 }
 
 void check_runnable(const Config& c) {
+    check_model_size(c);
     timestep_for(c);
     if (is_wedge(c)) check_wedge_base(c);
 }
@@ -157,6 +158,7 @@ std::string choose_run_dir(const std::string& out, const std::string& config_pat
 int cmd_check(const CommonArgs& a) {
     const Config c = load(a);
     if (is_calibration(c)) return check_calibration(c);
+    check_model_size(c);
     const TimestepInfo t = timestep_for(c);
     if (is_wedge(c)) check_wedge_base(c);
     const std::size_t n = generated_particle_count(c);

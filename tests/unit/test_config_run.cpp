@@ -8,6 +8,7 @@
 
 #include "orodem/core/error.hpp"
 #include "orodem/io/config.hpp"
+#include "orodem/setup/scenario.hpp"
 
 using namespace orodem;
 
@@ -169,4 +170,29 @@ TEST(ConfigRun, AResolvedConfigWithoutBaseLawIsAnOlderRunOnTheTractionBase) {
         msg = e.what();
     }
     EXPECT_NE(msg.find("applies to the eq. 5 traction only"), std::string::npos) << msg;
+}
+
+// The size check's estimate (no allocation) against the discs generation
+// really makes, for each packing kind: within 3% (the last row or cluster
+// and the random radii are the difference).
+TEST(ModelSize, TheDiscEstimateMatchesGenerationAndAbsurdSizesAreRefusedAtOnce) {
+    for (const char* kind : {"hexagonal", "discs", "clusters"}) {
+        const Config c = parse_config(std::string("[run]\nexperiment = \"settle\"\n[packing]\nkind = \"") + kind +
+                                          "\"\nlength = 400.0\nh0 = 20.0\n",
+                                      "size.toml", {});
+        const double n = static_cast<double>(generated_particle_count(c));
+        EXPECT_NEAR(estimated_disc_count(c.packing) / n, 1.0, 0.03) << kind << ": " << n;
+        EXPECT_NO_THROW(check_model_size(c));
+    }
+    for (const char* h0 : {"1e308", "5000.0"}) {
+        const Config c = parse_config(kWedge + "[packing]\nh0 = " + h0 + "\n", "size.toml", {});
+        try {
+            check_model_size(c);
+            ADD_FAILURE() << "h0 = " << h0 << " was accepted";
+        } catch (const ConfigError& e) {
+            const std::string m = e.what();
+            EXPECT_NE(m.find("discs and need about"), std::string::npos) << m;
+            EXPECT_NE(m.find("lower packing.h0"), std::string::npos) << m;
+        }
+    }
 }

@@ -1,5 +1,9 @@
 #include "orodem/setup/scenario.hpp"
 
+#include <unistd.h>
+
+#include <limits>
+
 #include <cmath>
 #include <numbers>
 
@@ -66,6 +70,32 @@ Simulation make_settle_simulation(const Config& c) {
     sim.walls.push_back({{0.0, 0.0}, {0.0, top}, {}, 0.0, false, false, 0.0});          // left
     sim.walls.push_back({{L, 0.0}, {L, top}, {}, 0.0, false, false, 0.0});              // right
     return sim;
+}
+
+double estimated_disc_count(const PackingConfig& pc) {
+    // generate_packing fills 0.9 L (h0 + 3 r_max) with discs of mean area
+    // π E[r²], r uniform in [r_min, r_max] (all r_max for hexagonal).
+    const double target_area = 0.9 * pc.length * (pc.h0 + 3.0 * pc.r_max);  // [m²]
+    const double a = pc.kind == "hexagonal" ? pc.r_max * pc.r_max
+                                            : (pc.r_min * pc.r_min + pc.r_min * pc.r_max + pc.r_max * pc.r_max) / 3.0;
+    double n = target_area / (M_PI * a);
+    if (pc.kind == "hexagonal") n += pc.length / (2.0 * pc.r_max);  // whole rows: up to one more
+    return std::isfinite(n) ? n : std::numeric_limits<double>::infinity();
+}
+
+void check_model_size(const Config& c) {
+    const double n = estimated_disc_count(c.packing);
+    const double pages = static_cast<double>(::sysconf(_SC_PHYS_PAGES));
+    const double memory = pages * static_cast<double>(::sysconf(_SC_PAGESIZE));  // [bytes]
+    const double need = n * kBytesPerDisc;
+    if (n <= kMaxDiscs && (memory <= 0.0 || need <= 0.8 * memory)) return;
+    const std::string keys = is_wedge(c) ? "packing.h0, wedge.s_max, wedge.pro_margin or wedge.retro_length"
+                                         : "packing.h0 or packing.length";
+    throw ConfigError(fmt::format(
+        "{}: the layer ({:g} m long, h0 = {:g} m, radii {:g}-{:g} m) would have about {:.3g} discs and need about "
+        "{:.3g} GB; orodem runs at most {:.0e} discs and {:.3g} GB (80% of this machine's memory); lower {}",
+        c.path, c.packing.length, c.packing.h0, c.packing.r_min, c.packing.r_max, n, need / 1e9, kMaxDiscs,
+        0.8 * memory / 1e9, keys));
 }
 
 std::size_t generated_particle_count(const Config& c) {

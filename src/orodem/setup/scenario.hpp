@@ -25,7 +25,21 @@ TimestepInfo timestep_for(const Config& c);
 /// particles are generated from the packing seed).
 Simulation make_settle_simulation(const Config& c);
 
-/// Number of particles (discs) generation will create for c.
+/// Number of particles (discs) generation will create for c. Call
+/// check_model_size first: it generates them.
 std::size_t generated_particle_count(const Config& c);
+
+/// The largest model orodem runs: 1e8 discs [-]; about 100 GB (docs/reliability.md, 6).
+inline constexpr double kMaxDiscs = 1.0e8;
+/// Memory a run needs per disc, about (particle columns, candidate pairs,
+/// cell lists, checkpoint bytes) [bytes].
+inline constexpr double kBytesPerDisc = 1024.0;
+/// The discs generation will create for the packing, estimated from its
+/// area (within a few per cent; no allocation) [-]; +inf when not finite.
+double estimated_disc_count(const PackingConfig& pc);
+/// Throws ConfigError, at once and before anything is allocated, when the
+/// estimate exceeds kMaxDiscs or needs more memory than the machine has
+/// (kBytesPerDisc per disc), naming the estimate and the keys to change.
+void check_model_size(const Config& c);
 
 }  // namespace orodem

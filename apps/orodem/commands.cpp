@@ -89,7 +89,8 @@ Config load(const CommonArgs& a) {
 }
 
 bool ends_a_piece(const std::string& line) {
-    for (const char* e : {"finished:", "interrupted by", "stopped at the wall-time limit", "STOPPED:", "UNSTABLE:"})
+    for (const char* e : {"finished:", "interrupted by", "stopped at the wall-time limit", "stopped by an I/O error",
+                          "STOPPED:", "UNSTABLE:"})
         if (line.rfind(e, 0) == 0) return true;
     return false;
 }
@@ -656,11 +657,32 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
     return 0;
 }
 
+/// run_wedge, and when an I/O error (a full disk, a failed write) stops it,
+/// an end line in log.txt first (if the log can still be written), so that
+/// orodem status says how the piece ended and adds up its wall time.
+int run_wedge_logging_io_stops(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& log,
+                               const RunLoopState* resumed) {
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+        return run_wedge(c, w, dir, log, resumed);
+    } catch (const IoError& e) {
+        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        try {
+            log.line(fmt::format("stopped by an I/O error at step {} (S = {:.4f}) after {:.1f} s wall: {}",
+                                 w.sim.step_count, c.wedge.v * w.sim.time / c.packing.h0, secs, e.what()));
+        } catch (const IoError&) {
+            // The log cannot be written either (the disk is full): orodem status
+            // then says "no end line"; the exit status (4) and stderr say why.
+        }
+        throw;
+    }
+}
+
 /// A wedge run from the beginning in dir (config.toml and log.txt exist).
 int start_wedge(const Config& c, const std::string& dir, LineFile& log) {
     const ParticleStore layer = prepare_layer(c, dir, log, nullptr);
     WedgeSetup w = make_wedge(c, layer);
-    const int rc = run_wedge(c, w, dir, log, nullptr);
+    const int rc = run_wedge_logging_io_stops(c, w, dir, log, nullptr);
     if (rc != 0) return rc;
     fmt::print("outputs in {}/ (config.toml, log.txt, series.csv)\n", dir);
     return 0;
@@ -769,7 +791,7 @@ int resume_run(const Config& c, const std::string& dir) {
     log.line(fmt::format("resumed by orodem {} from {} at step {} (S = {:.4f}) with {} threads", ORODEM_VERSION, path,
                          w.sim.step_count, c.wedge.v * w.sim.time / c.packing.h0, omp_get_max_threads()));
     fmt::print("resuming {} from step {} ({})\n", dir, w.sim.step_count, path);
-    const int rc = run_wedge(c, w, dir, log, &st);
+    const int rc = run_wedge_logging_io_stops(c, w, dir, log, &st);
     if (rc == 0) fmt::print("outputs in {}/ (config.toml, log.txt, series.csv)\n", dir);
     return rc;
 }

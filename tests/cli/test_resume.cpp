@@ -209,9 +209,13 @@ TEST_F(Resume, AFullDiskGivesExit4AndNoCorruptCheckpoint) {
             bad.push_back(path + ": " + e.what());
         }
     }
+    const std::string log = slurp(run / "log.txt");
     std::system(("umount '" + mnt.string() + "'").c_str());
     EXPECT_EQ(rc, 4) << err;
     EXPECT_NE(err.find("orodem: I/O error:"), std::string::npos) << err;
+    // The stop has its end line (the free-space check stops the run before
+    // the disk is full, so the log can still be written): orodem status says why.
+    EXPECT_HAS(log, "\nstopped by an I/O error at step ");
     EXPECT_TRUE(bad.empty()) << bad.front();
 }
 

@@ -13,6 +13,8 @@
 #include <fmt/format.h>
 
 #include "orodem/core/error.hpp"
+#include "orodem/io/files.hpp"
+#include "orodem/render/plot_util.hpp"
 
 namespace orodem {
 
@@ -65,10 +67,10 @@ void render_particles(const ParticleStore& p, const std::vector<double>* scalar,
     const double scale = (o.width_px - margin_l - margin_r) / (o.x_max - o.x_min);  // px per m
     const int height_px = static_cast<int>(std::ceil((o.y_max - o.y_min) * scale + margin_t + margin_b));
     const std::string ext = extension(path);
-    const std::string tmp = path + ".tmp";
+    std::string bytes;  // the picture, written in one atomic write at the end (io/files.hpp)
     cairo_surface_t* surface = nullptr;
-    if (ext == "svg") surface = cairo_svg_surface_create(tmp.c_str(), o.width_px, height_px);
-    else if (ext == "pdf") surface = cairo_pdf_surface_create(tmp.c_str(), o.width_px, height_px);
+    if (ext == "svg") surface = cairo_svg_surface_create_for_stream(plot::append_bytes, &bytes, o.width_px, height_px);
+    else if (ext == "pdf") surface = cairo_pdf_surface_create_for_stream(plot::append_bytes, &bytes, o.width_px, height_px);
     else surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, o.width_px, height_px);
     if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS)
         throw IoError(fmt::format("cannot create picture '{}': {}", path,
@@ -152,15 +154,13 @@ void render_particles(const ParticleStore& p, const std::vector<double>* scalar,
 
     cairo_destroy(cr);
     cairo_status_t st = CAIRO_STATUS_SUCCESS;
-    if (ext != "svg" && ext != "pdf") st = cairo_surface_write_to_png(surface, tmp.c_str());
+    if (ext != "svg" && ext != "pdf") st = cairo_surface_write_to_png_stream(surface, plot::append_bytes, &bytes);
     cairo_surface_finish(surface);
     if (st == CAIRO_STATUS_SUCCESS) st = cairo_surface_status(surface);
     cairo_surface_destroy(surface);
-    if (st != CAIRO_STATUS_SUCCESS) {
-        std::remove(tmp.c_str());
-        throw IoError(fmt::format("cannot write picture '{}': {}", path, cairo_status_to_string(st)));
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) throw_io_error("cannot rename into place", path);
+    if (st != CAIRO_STATUS_SUCCESS)
+        throw IoError(fmt::format("cannot draw picture '{}': {}", path, cairo_status_to_string(st)));
+    write_file_atomic(path, bytes);
 }
 
 }  // namespace orodem

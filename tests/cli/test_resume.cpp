@@ -142,6 +142,23 @@ TEST_F(Resume, AfterSigintACorruptNewestCheckpointFallsBackToTheOlderOne) {
     expect_same_outputs(reference_, run);
 }
 
+// The newest checkpoint truncated (a half-written file from a crash of the
+// file system, say): the resume falls back to the older one, says so, and
+// finishes with outputs byte-identical to an uninterrupted run.
+TEST_F(Resume, ATruncatedNewestCheckpointFallsBackAndFinishesLikeAnUninterruptedRun) {
+    const fs::path run = root_ / "T";
+    const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1"}, root_ / "T");
+    ASSERT_TRUE(signal_after_checkpoint(p, run, {SIGTERM})) << slurp(p.err);
+    ASSERT_EQ(wait_for(p), 143) << slurp(p.err);
+    const auto files = orodem::list_checkpoints((run / "checkpoint").string());
+    ASSERT_EQ(files.size(), 2u);
+    fs::resize_file(files[0].second, fs::file_size(files[0].second) / 3);
+    const Proc r = start({"resume", run.string(), "--threads", "1"}, root_ / "T-resume");
+    ASSERT_EQ(wait_for(r), 0) << slurp(r.err);
+    EXPECT_HAS(slurp(r.err), "not used:");
+    expect_same_outputs(reference_, run);
+}
+
 TEST_F(Resume, ASecondSignalIsIgnoredUntilTheShutdownCheckpointIsWritten) {
     const fs::path run = root_ / "D";
     const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1"}, root_ / "D");

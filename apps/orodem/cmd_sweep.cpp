@@ -319,7 +319,17 @@ int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& o
     for (const auto& v : values) {
         CommonArgs one = a;
         one.sets.push_back(key + "=" + v);
-        Config c = load(one);
+        Config c;
+        try {
+            c = load(one);
+        } catch (const ConfigError& e) {
+            // The varied value is applied as the last --set: name it as the
+            // user wrote it, --vary, when the message is about it.
+            const std::string msg = e.what(), as_set = "--set " + key + "=" + v;
+            if (msg.rfind(as_set, 0) == 0)
+                throw ConfigError(fmt::format("--vary {} (the value {}){}", key, v, msg.substr(as_set.size())));
+            throw;
+        }
         if (is_calibration(c))
             throw ConfigError(fmt::format("{}: run.experiment = \"{}\" is a calibration experiment, which sweeps "
                                           "its own [calibrate] lists: run it with orodem calibrate", c.path,

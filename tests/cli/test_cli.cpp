@@ -262,6 +262,8 @@ TEST_F(Cli, MessagesNameTheRealProblem) {
          "README.md: is a file, not a directory"},
         {"check " + cfg + " --set wedge.v=-1", "--set wedge.v=-1: key 'wedge.v' = -1: must be a number > 0"},
         {"check " + cfg + " --set wedge.vee=1", "--set wedge.vee=1: unknown key 'wedge.vee'"},
+        {"sweep " + cfg + " --vary wedge.v=-1,0.1 --out " + quote((work_ / "sw").string()),
+         "--vary wedge.v (the value -1): key 'wedge.v' = -1: must be a number > 0"},
         {"run " + cfg + " --threads -1", "--threads"},
         {"resume /nonexistent --threads -3", "--threads"},
     };

@@ -9,6 +9,8 @@
 // crash, as it does any sanitizer finding. An accepted config must also read
 // back: its resolved TOML (what a run directory's config.toml holds, read
 // again by --resume) loads to the same text; otherwise the target aborts.
+// And what `orodem check` derives from it before generating anything
+// (sizes, timestep, base checks, plate estimate) must answer or refuse.
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -19,8 +21,30 @@
 #include "orodem/core/error.hpp"
 #include "orodem/io/checkpoint.hpp"
 #include "orodem/io/config.hpp"
+#include "orodem/setup/scenario.hpp"
+#include "orodem/setup/wedge.hpp"
 
 namespace {
+
+/// What `orodem check` derives from an accepted config before it generates
+/// anything (the size check first): each must answer or refuse with a
+/// ConfigError, at once, whatever the numbers (1e308, denormals, -0, huge
+/// counts). A hang shows as a libFuzzer timeout.
+void derived(const orodem::Config& c) {
+    try {
+        (void)orodem::estimated_disc_count(c.packing);
+        orodem::check_model_size(c);
+        (void)orodem::timestep_for(c);
+        if (orodem::is_wedge(c)) {
+            orodem::check_wedge_base(c);
+            (void)orodem::inertial_number(c);
+            (void)orodem::plate_estimate(c);
+            (void)orodem::wedge_profile_params(c);
+        }
+    } catch (const orodem::ConfigError&) {
+        // a refusal is a correct answer
+    }
+}
 
 void check(const std::string& text, const std::vector<orodem::Override>& overrides) {
     orodem::Config c;
@@ -42,6 +66,7 @@ void check(const std::string& text, const std::vector<orodem::Override>& overrid
         std::abort();
     }
     (void)orodem::config_hash(c);
+    derived(c);
 }
 
 }  // namespace

@@ -518,7 +518,8 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
         const std::vector<double> rel = relative_displacement(sim, st.x_then);
         st.x_then = positions_by_id(sim.particles);
         const std::string name = fmt::format("S{:06.3f}", S);
-        write_vtu(fmt::format("{}/snapshots/{}.vtu", dir, name), sim.particles, rel);
+        const VtuStamp stamp{S, sim.step_count, sim.time};
+        write_vtu(fmt::format("{}/snapshots/{}.vtu", dir, name), sim.particles, rel, &stamp);
         st.pvd.emplace_back(S, fmt::format("snapshots/{}.vtu", name));
         write_pvd(dir + "/run.pvd", st.pvd);
         view.label = fmt::format("{}   S = {:.2f}   initial depth", c.run.experiment, S);

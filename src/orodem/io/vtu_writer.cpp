@@ -28,7 +28,8 @@ Array make_array(const std::string& name, const char* type, int comps, const std
 
 }  // namespace
 
-void write_vtu(const std::string& path, const ParticleStore& p, const std::vector<double>& rel_disp) {
+void write_vtu(const std::string& path, const ParticleStore& p, const std::vector<double>& rel_disp,
+               const VtuStamp* stamp) {
     const std::size_t n = p.size();
     // Discs in id order, so that files of one run line up point by point.
     std::vector<double> pts(3 * n), vel(3 * n), radius(n), depth(n), omega(n), rd(n, 0.0);
@@ -75,6 +76,23 @@ void write_vtu(const std::string& path, const ParticleStore& p, const std::vecto
     xml += "<?xml version=\"1.0\"?>\n";
     xml += "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
     xml += "  <UnstructuredGrid>\n";
+    if (stamp) {
+        // Field data (one tuple each), declared like the point data.
+        std::vector<Array> fields;
+        fields.push_back(make_array("S", "Float64", 1, std::vector<double>{stamp->S}));
+        fields.push_back(make_array("step", "Int64", 1, std::vector<std::int64_t>{static_cast<std::int64_t>(stamp->step)}));
+        fields.push_back(make_array("time", "Float64", 1, std::vector<double>{stamp->time}));
+        xml += "    <FieldData>\n";
+        for (const auto& a : fields) {
+            xml += fmt::format("      <DataArray type=\"{}\" Name=\"{}\" NumberOfTuples=\"1\" format=\"appended\" "
+                               "offset=\"{}\"/>\n",
+                               a.type, a.name, data.size());
+            const std::uint64_t len = a.bytes.size();
+            data.append(reinterpret_cast<const char*>(&len), sizeof len);
+            data += a.bytes;
+        }
+        xml += "    </FieldData>\n";
+    }
     xml += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", n, n);
     xml += "      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n";
     for (const auto& a : point_data) declare(a);
@@ -117,7 +135,9 @@ VtuData read_vtu(const std::string& path) {
         const auto e = b.find('"', k + key.size() + 2);
         return b.substr(k + key.size() + 2, e - k - key.size() - 2);
     };
+    const auto field_begin = b.find("<FieldData>"), field_end = b.find("</FieldData>");
     for (std::size_t pos = b.find("<DataArray"); pos != std::string::npos && pos < app; pos = b.find("<DataArray", pos + 1)) {
+        if (field_begin != std::string::npos && pos > field_begin && pos < field_end) continue;  // S, step, time
         const std::string name = attr(pos, "Name"), type = attr(pos, "type");
         const int comps = std::stoi(attr(pos, "NumberOfComponents"));
         const std::size_t off = base + std::stoull(attr(pos, "offset"));

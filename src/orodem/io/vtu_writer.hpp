@@ -1,10 +1,12 @@
 // ParaView output: one VTK UnstructuredGrid (.vtu) per snapshot, one vertex
 // cell per disc, with the point data of SPEC §4 (id, radius, velocity,
-// initial_depth, side, cluster_id, rel_disp, plus omega and fixed), and a
-// run.pvd collection carrying S as the time value. Data are raw binary
+// initial_depth, side, cluster_id, rel_disp, plus omega and fixed), field
+// data S, step and time (VtuStamp), and a run.pvd collection carrying S as
+// the time value. Data are raw binary
 // appended (little-endian, UInt64 headers); files are written atomically.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,8 +15,18 @@
 
 namespace orodem {
 
-/// rel_disp: per slot (may be empty: written as zeros).
-void write_vtu(const std::string& path, const ParticleStore& p, const std::vector<double>& rel_disp);
+/// When the snapshot was taken; written as the file's field data (one value
+/// each: S [-], step [-], time [s]) so that a snapshot describes itself.
+struct VtuStamp {
+    double S = 0.0;          // normalised convergence S = v' t / h0 [-]
+    std::uint64_t step = 0;  // timestep count
+    double time = 0.0;       // simulated time [s]
+};
+
+/// rel_disp: per slot (may be empty: written as zeros). stamp: S, step and
+/// time as field data (none when null).
+void write_vtu(const std::string& path, const ParticleStore& p, const std::vector<double>& rel_disp,
+               const VtuStamp* stamp = nullptr);
 
 /// run.pvd listing (S, file name relative to the pvd) pairs.
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& entries);

@@ -1,0 +1,103 @@
+"""The Python reader against a real run made by the orodem binary
+(ORODEM_EXE, else build/orodem), and against VTK's own reader where
+python3-vtk9 is installed."""
+import csv
+import math
+import os
+import subprocess
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+import orodem
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+EXE = os.environ.get("ORODEM_EXE", os.path.join(ROOT, "build", "orodem"))
+
+TINY = """[run]
+experiment = "exp1"
+[wedge]
+v = 0.3
+s_max = 0.3
+output_ds = 0.1
+pro_margin = 5.0
+retro_length = 3.0
+[packing]
+h0 = 6.0
+cache_dir = "{cache}"
+"""
+
+
+@pytest.fixture(scope="module")
+def run_dir(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("orodem-python")
+    cfg = tmp / "tiny.toml"
+    cfg.write_text(TINY.format(cache=tmp / "cache"))
+    out = tmp / "run"
+    subprocess.run([EXE, "run", str(cfg), "--out", str(out), "--threads", "1"], check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return out
+
+
+def test_config_series_and_outputs(run_dir):
+    r = orodem.open_run(run_dir)
+    assert r.config["run"]["experiment"] == "exp1"
+    assert r.config["wedge"]["v"] == 0.3
+    with open(run_dir / "series.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert set(r.series) == set(rows[0])
+    assert len(r.series["S"]) == len(rows) == 4  # S = 0, 0.1, 0.2, 0.3
+    for k, row in enumerate(rows):
+        for name, text in row.items():
+            want = float(text)
+            got = r.series[name][k]
+            assert (math.isnan(want) and math.isnan(got)) or got == want, (name, k)
+    pvd = [float(d.get("timestep")) for d in ET.parse(run_dir / "run.pvd").getroot().iter("DataSet")]
+    assert r.outputs == pvd
+    assert r.outputs[-1] == pytest.approx(0.3, abs=1e-3)  # the last step reaches s_max to a step
+
+
+def test_snapshot_is_self_describing(run_dir):
+    r = orodem.open_run(run_dir)
+    for k, S in enumerate(r.outputs):
+        s = r.snapshot(S)
+        assert s["S"] == pytest.approx(S, abs=5e-7)  # run.pvd keeps 6 decimals
+        assert s["step"] == int(r.series["step"][k])
+        assert s["time"] == pytest.approx(r.series["time"][k], rel=1e-8)
+        n = s["radius"].size
+        assert s["x"].shape == s["y"].shape == (n,)
+        assert s["velocity"].shape == (n, 3)
+        assert sorted(s["id"]) == list(range(n))
+    assert r.snapshot_path(0.26) == r.snapshot_path(0.3)  # the nearest S
+
+
+def test_snapshot_equals_vtks_reading(run_dir):
+    vtk = pytest.importorskip("vtk")
+    from vtk.util.numpy_support import vtk_to_numpy
+    r = orodem.open_run(run_dir)
+    path = r.snapshot_path(r.outputs[-1])
+    s = r.snapshot(r.outputs[-1])
+    reader = vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    grid = reader.GetOutput()
+    pts = vtk_to_numpy(grid.GetPoints().GetData())
+    assert np.array_equal(pts[:, 0], s["x"]) and np.array_equal(pts[:, 1], s["y"])
+    pd = grid.GetPointData()
+    assert pd.GetNumberOfArrays() == 9
+    for k in range(pd.GetNumberOfArrays()):
+        a = pd.GetArray(k)
+        assert np.array_equal(vtk_to_numpy(a), s[a.GetName()]), a.GetName()
+    fd = grid.GetFieldData()
+    assert {fd.GetArray(k).GetName(): fd.GetArray(k).GetValue(0) for k in range(3)} == {
+        "S": s["S"], "step": s["step"], "time": s["time"]}
+
+
+def test_what_is_not_a_run_is_refused(tmp_path):
+    with pytest.raises(FileNotFoundError, match="not an orodem run directory"):
+        orodem.open_run(tmp_path)
+    bad = tmp_path / "x.vtu"
+    bad.write_text("<VTKFile/>")
+    with pytest.raises(ValueError, match="no appended data"):
+        orodem.read_vtu(bad)

@@ -225,11 +225,30 @@ public:
     double elapsed() const {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
     }
+    /// A status line, on a terminal only: the line is cleared and rewritten.
     template <class... T>
     void show(fmt::format_string<T...> f, T&&... args) {
         if (!tty_) return;
-        fmt::print("\r{}   ", fmt::format(f, std::forward<T>(args)...));
+        fmt::print("\r\033[K{}", fmt::format(f, std::forward<T>(args)...));
         std::fflush(stdout);
+    }
+    /// A wedge run's progress: S, its percentage of s_max, steps/s since this
+    /// piece began (at step `first`) and the time left, blank until a rate
+    /// exists (one second of running). On a terminal the line is rewritten at
+    /// most once a second, and at every output (at_output); elsewhere (a log
+    /// file, nohup) a plain line is printed at every output only.
+    void run_line(double S, double s_max, std::uint64_t first, std::uint64_t step, std::uint64_t total,
+                  bool at_output) {
+        const double now = elapsed();
+        if (tty_ ? (!at_output && now - shown_at_ < 1.0) : !at_output) return;
+        shown_at_ = now;
+        const double rate = now >= 1.0 && step > first ? static_cast<double>(step - first) / now : 0.0;
+        std::string text = fmt::format("S = {:.3f} of {:g} ({:.1f}%)", S, s_max, 100.0 * S / s_max);
+        if (rate > 0.0)
+            text += fmt::format(", {:.0f} steps/s, {} left", rate,
+                                duration_text(static_cast<double>(total - std::min(total, step)) / rate));
+        if (tty_) show("{}", text);
+        else fmt::print("{}\n", text);
     }
     void done() {
         if (tty_) fmt::print("\n");
@@ -238,6 +257,7 @@ public:
 private:
     bool tty_;
     std::chrono::steady_clock::time_point t0_;
+    double shown_at_ = -1.0;  // elapsed() when the run line was last shown [s]
 };
 
 /// The settled layer of c: from the cache when present, else settled now
@@ -397,7 +417,7 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
     // Whole output intervals only, so the last row sits on s_max (to one step).
     const auto n_outputs = static_cast<std::uint64_t>(std::max(1LL, std::llround(c.wedge.s_max / c.wedge.output_ds)));
     const std::uint64_t total_steps = n_outputs * steps_per_output;
-    const std::uint64_t first_step = sim.step_count;
+    const std::uint64_t first_step = sim.step_count;  // this piece's first step (a resume starts later)
     Progress progress;
     // The rate logged with each output is over the interval since the previous
     // output (or since this piece began): `orodem status` takes the median of
@@ -499,8 +519,7 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
                              S, m.H_over_h0, m.alpha_deg, m.beta_deg, sim.max_overlap_ratio(), sim.max_speed(),
                              static_cast<double>(sim.touching_contacts()) / static_cast<double>(sim.particles.size()),
                              sim.sleeping_count(), rate));
-        progress.show("S = {:.3f} / {:g}, {:.0f} steps/s, {:.0f} s left", S, c.wedge.s_max, rate,
-                      static_cast<double>(total_steps - std::min(total_steps, sim.step_count)) / std::max(rate, 1e-9));
+        progress.run_line(S, c.wedge.s_max, first_step, sim.step_count, total_steps, true);
         return m;
     };
     make_dirs(dir + "/figures");
@@ -611,6 +630,7 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
         const std::uint64_t next_output = std::min(total_steps, (sim.step_count / steps_per_output + 1) * steps_per_output);
         const std::uint64_t next_stop = std::min(next_output, (sim.step_count / kChunk + 1) * kChunk);
         sim.advance(next_stop - sim.step_count);
+        progress.run_line(c.wedge.v * sim.time / h0, c.wedge.s_max, first_step, sim.step_count, total_steps, false);
         if (sim.step_count == next_output) {
             output();
         } else if (sim.step_count % kCheckEvery == 0) {

@@ -174,6 +174,21 @@ TEST_F(Resume, ASecondSignalIsIgnoredUntilTheShutdownCheckpointIsWritten) {
         EXPECT_NO_THROW(orodem::verify_checkpoint(orodem::read_file(path), hash)) << path;
 }
 
+// Off a terminal (the reference run's stdout is a file) the progress is one
+// plain line per output: S, its percentage of s_max, and once a second has
+// passed the rate and the time left; no carriage returns or escape codes.
+TEST_F(Resume, OffATerminalProgressIsOnePlainLinePerOutput) {
+    const std::string out = slurp(root_ / "A.out");
+    EXPECT_EQ(out.find('\r'), std::string::npos) << out;
+    EXPECT_EQ(out.find('\033'), std::string::npos) << out;
+    EXPECT_HAS(out, "S = 0.000 of 0.5 (0.0%)\n");
+    EXPECT_HAS(out, "S = 0.500 of 0.5 (100.0%), ");
+    std::size_t lines = 0;
+    std::istringstream in(out);
+    for (std::string line; std::getline(in, line);) lines += line.rfind("S = ", 0) == 0;
+    EXPECT_EQ(lines, 6u) << out;  // S = 0, 0.1, ..., 0.5
+}
+
 // With its checkpoints gone (checkpoint/ deleted), a run that has outputs
 // cannot be continued: resume refuses (exit 2) and changes nothing.
 TEST_F(Resume, WithoutACheckpointARunWithOutputsIsRefusedAndLeftAsItWas) {

@@ -6,6 +6,8 @@
 // max, which is exact.
 #include "orodem/engine/simulation.hpp"
 
+#include "orodem/core/bytes.hpp"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -53,6 +55,53 @@ LawParams Simulation::wall_law(std::size_t w) const {
     l.mu = walls[w].mu;
     l.cohesion = 0.0;
     return l;
+}
+
+void Simulation::save_internals(ByteWriter& w) const {
+    w.put_vector(builder_.x_ref());
+    w.put(builder_.rebuild_count());
+    w.put_vector(wall_shift_);
+    w.put(max_disp2_);
+    w.put(static_cast<std::uint8_t>(force_rebuild_ ? 1 : 0));
+    w.put(awake_begin_);
+    w.put(awake_end_);
+    w.put(pairs_begin_);
+    w.put(pairs_end_);
+    w.put(last_rebuild_step_);
+}
+
+Simulation::Internals Simulation::read_internals(ByteReader& r) {
+    Internals v;
+    r.get_vector(v.x_ref);
+    r.get(v.rebuilds);
+    r.get_vector(v.wall_shift);
+    r.get(v.max_disp2);
+    v.force_rebuild = r.get<std::uint8_t>() != 0;
+    r.get(v.awake_begin);
+    r.get(v.awake_end);
+    r.get(v.pairs_begin);
+    r.get(v.pairs_end);
+    r.get(v.last_rebuild_step);
+    return v;
+}
+
+void Simulation::restore_internals(Internals&& v) {
+    bonds = build_bond_topology(particles);
+    wall_law_.clear();
+    for (std::size_t w = 0; w < walls.size(); ++w) wall_law_.push_back(wall_law(w));
+    builder_.x_ref() = std::move(v.x_ref);
+    builder_.set_rebuild_count(v.rebuilds);
+    wall_shift_ = std::move(v.wall_shift);
+    max_disp2_ = v.max_disp2;
+    force_rebuild_ = v.force_rebuild;
+    awake_begin_ = v.awake_begin;
+    awake_end_ = v.awake_end;
+    pairs_begin_ = v.pairs_begin;
+    pairs_end_ = v.pairs_end;
+    last_rebuild_step_ = v.last_rebuild_step;
+    index_wall_discs();
+    dashpots_stale_ = true;  // pairs and inverse masses restored: the per-pair dashpots follow
+    set_drift_range();       // checkpoints are written between advance() calls: no drift lag
 }
 
 void Simulation::initialize() {

@@ -131,6 +131,26 @@ public:
     /// Forces a pair rebuild at the next step (e.g. after particles were moved by hand).
     void request_rebuild() { force_rebuild_ = true; }
 
+    /// The private state that later steps depend on, for checkpoints
+    /// (io/checkpoint.cpp): the pair builder's reference positions and
+    /// rebuild count, the wall shifts and largest displacement since the last
+    /// rebuild, a pending rebuild, and the sleeping-zone ranges. A new member
+    /// that later steps depend on goes here and in the three functions below.
+    struct Internals {
+        std::vector<Vec2> x_ref;
+        std::uint64_t rebuilds = 0;
+        std::vector<Vec2> wall_shift;
+        double max_disp2 = 0.0;
+        bool force_rebuild = false;
+        std::uint32_t awake_begin = 0, awake_end = 0, pairs_begin = 0, pairs_end = 0;  // engine/sleep.cpp
+        std::uint64_t last_rebuild_step = 0;
+    };
+    void save_internals(ByteWriter& w) const;
+    static Internals read_internals(ByteReader& r);
+    /// After particles, contacts and walls are in place: the derived caches
+    /// (bonds, wall laws, wall-disc lists, dashpots) and the saved internals.
+    void restore_internals(Internals&& v);
+
     /// Per-phase wall time of step() so far (see PhaseTimes).
     const PhaseTimes& phase_times() const { return times_; }
     void reset_phase_times() { times_ = {}; }
@@ -139,10 +159,6 @@ private:
     // The phases of step(); step() is the only caller in the library.
     // bench/bench_kernels.cpp times them one by one through KernelBench.
     friend struct KernelBench;
-    // io/checkpoint.cpp saves and restores the private state below (builder_'s
-    // x_ref and rebuild count, wall_shift_, max_disp2_, force_rebuild_); a new
-    // member that later steps depend on must be added there too.
-    friend struct SimulationAccess;
     void kick_drift();       // v += F/m dt/2, ω += T/I dt/2, x += v dt, θ += ω dt; max displacement
     bool needs_rebuild(double wall_move) const;
     void rebuild_pairs();

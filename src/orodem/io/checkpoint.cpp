@@ -13,64 +13,6 @@
 
 namespace orodem {
 
-/// The one door into Simulation's private state (a friend of Simulation).
-struct SimulationAccess {
-    static void save(const Simulation& s, ByteWriter& w) {
-        w.put_vector(s.builder_.x_ref());
-        w.put(s.builder_.rebuild_count());
-        w.put_vector(s.wall_shift_);
-        w.put(s.max_disp2_);
-        w.put(static_cast<std::uint8_t>(s.force_rebuild_ ? 1 : 0));
-        w.put(s.awake_begin_);
-        w.put(s.awake_end_);
-        w.put(s.pairs_begin_);
-        w.put(s.pairs_end_);
-        w.put(s.last_rebuild_step_);
-    }
-    struct Saved {
-        std::vector<Vec2> x_ref;
-        std::uint64_t rebuilds = 0;
-        std::vector<Vec2> wall_shift;
-        double max_disp2 = 0.0;
-        bool force_rebuild = false;
-        std::uint32_t awake_begin = 0, awake_end = 0, pairs_begin = 0, pairs_end = 0;  // engine/sleep.cpp
-        std::uint64_t last_rebuild_step = 0;
-    };
-    static Saved read(ByteReader& r) {
-        Saved v;
-        r.get_vector(v.x_ref);
-        r.get(v.rebuilds);
-        r.get_vector(v.wall_shift);
-        r.get(v.max_disp2);
-        v.force_rebuild = r.get<std::uint8_t>() != 0;
-        r.get(v.awake_begin);
-        r.get(v.awake_end);
-        r.get(v.pairs_begin);
-        r.get(v.pairs_end);
-        r.get(v.last_rebuild_step);
-        return v;
-    }
-    /// After particles and walls are in place: the derived caches and the saved internals.
-    static void restore(Simulation& s, Saved&& v) {
-        s.bonds = build_bond_topology(s.particles);
-        s.wall_law_.clear();
-        for (std::size_t w = 0; w < s.walls.size(); ++w) s.wall_law_.push_back(s.wall_law(w));
-        s.builder_.x_ref() = std::move(v.x_ref);
-        s.builder_.set_rebuild_count(v.rebuilds);
-        s.wall_shift_ = std::move(v.wall_shift);
-        s.max_disp2_ = v.max_disp2;
-        s.force_rebuild_ = v.force_rebuild;
-        s.awake_begin_ = v.awake_begin;
-        s.awake_end_ = v.awake_end;
-        s.pairs_begin_ = v.pairs_begin;
-        s.pairs_end_ = v.pairs_end;
-        s.last_rebuild_step_ = v.last_rebuild_step;
-        s.index_wall_discs();
-        s.dashpots_stale_ = true;  // pairs and inverse masses restored: the per-pair dashpots follow
-        s.set_drift_range();  // checkpoints are written between advance() calls: no drift lag
-    }
-};
-
 namespace {
 
 constexpr char kMagic[8] = {'O', 'R', 'O', 'D', 'E', 'M', 'C', 'K'};
@@ -198,7 +140,7 @@ std::string encode_checkpoint(const Simulation& sim, const RunLoopState& run, st
     w.put(sim.step_count);
     w.put(sim.time);
     put_tag(w, "internals");
-    SimulationAccess::save(sim, w);
+    sim.save_internals(w);
     put_tag(w, "boundaries");
     w.put(static_cast<std::uint64_t>(sim.boundaries.size()));
     for (const auto& b : sim.boundaries) {
@@ -258,7 +200,7 @@ void decode_checkpoint(std::string_view bytes, std::uint64_t expected_config_has
     std::vector<Wall> walls;
     std::uint64_t step = 0;
     double time = 0.0;
-    SimulationAccess::Saved internals;
+    Simulation::Internals internals;
     std::vector<std::string> boundary_state;
     RunLoopState run;
     try {
@@ -325,7 +267,7 @@ void decode_checkpoint(std::string_view bytes, std::uint64_t expected_config_has
         if (step != h.info.step) bad("step differs from the header's");
 
         expect_tag(r, "internals");
-        internals = SimulationAccess::read(r);
+        internals = Simulation::read_internals(r);
         if (internals.x_ref.size() != n) bad("x_ref size");
         if (internals.wall_shift.size() != walls.size()) bad("wall_shift size");
 
@@ -394,7 +336,7 @@ void decode_checkpoint(std::string_view bytes, std::uint64_t expected_config_has
     sim.walls = std::move(walls);
     sim.step_count = step;
     sim.time = time;
-    SimulationAccess::restore(sim, std::move(internals));
+    sim.restore_internals(std::move(internals));
     run_out = std::move(run);
 }
 

@@ -10,7 +10,7 @@
 // touching this file), slot_of_id, the ContactStore and WallContactStore
 // arrays, every wall (they move), step_count, time, the Simulation's private
 // state (PairBuilder x_ref and rebuild count, wall_shift, max_disp2,
-// force_rebuild; via SimulationAccess), each boundary's own state (by name,
+// force_rebuild, sleeping-zone ranges: Simulation::save_internals), each boundary's own state (by name,
 // Boundary::save_state), and the run loop's state (RunLoopState).
 //
 // Loading checks magic, version, config hash, sizes and both checksums, and

@@ -788,7 +788,15 @@ int resume_run(const Config& c, const std::string& dir) {
     WedgeSetup w = make_wedge(c, ParticleStore{});
     RunLoopState st;
     std::vector<std::string> notes;
-    const std::string path = restore_newest_checkpoint(dir + "/checkpoint", config_hash(c), w.sim, st, &notes);
+    std::string path;
+    try {
+        path = restore_newest_checkpoint(dir + "/checkpoint", config_hash(c), w.sim, st, &notes);
+    } catch (const CheckpointError& e) {
+        // Every checkpoint is damaged: nothing to continue from; nothing changed.
+        throw ConfigError(fmt::format("--resume {}: {}; nothing was changed. Keep the run as it is, or start it "
+                                      "again in a new directory: orodem run {}/config.toml --out NEW_DIR",
+                                      dir, e.what(), dir));
+    }
     for (const auto& n : notes) fmt::print(stderr, "orodem: warning: {}\n", n);
     // log.txt beyond the checkpoint: the rows and warnings that the resumed
     // run writes again, and the history of the pieces since: the previous

@@ -205,6 +205,22 @@ TEST_F(Resume, WithoutACheckpointARunWithOutputsIsRefusedAndLeftAsItWas) {
     EXPECT_EQ(slurp(run / "log.txt"), slurp(reference_ / "log.txt"));
 }
 
+// Every checkpoint damaged: refused with exit 2, naming each file and why, nothing changed.
+TEST_F(Resume, WithOnlyDamagedCheckpointsTheResumeIsRefusedAndChangesNothing) {
+    const fs::path run = root_ / "U";
+    fs::copy(reference_, run, fs::copy_options::recursive);
+    for (const auto& [step, path] : orodem::list_checkpoints((run / "checkpoint").string()))
+        fs::resize_file(path, fs::file_size(path) / 2);
+    const std::string before = slurp(run / "log.txt");
+    const Proc r = start({"resume", run.string()}, root_ / "U");
+    EXPECT_EQ(wait_for(r), 2);
+    const std::string err = slurp(r.err);
+    EXPECT_HAS(err, "no usable checkpoint in");
+    EXPECT_HAS(err, "nothing was changed");
+    expect_same_outputs(reference_, run);
+    EXPECT_EQ(slurp(run / "log.txt"), before);
+}
+
 TEST_F(Resume, AnotherConfigIsRefusedWithExit2) {
     const Proc r = start({"run", config_.string(), "--out", reference_.string(), "--resume", "--set", "wedge.mu_bp=0.4"},
                          root_ / "E");

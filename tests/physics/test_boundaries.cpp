@@ -27,6 +27,7 @@
 #include "orodem/setup/scenario.hpp"
 #include "orodem/setup/wedge.hpp"
 #include "layer_util.hpp"
+#include "default_disc.hpp"
 #include "test_util.hpp"
 
 using namespace orodem;
@@ -35,13 +36,12 @@ namespace {
 
 using test::SerialOmp;
 
-constexpr double kRho = 2500.0;  // [kg/m³]
-constexpr double kR = 0.5;       // [m]
-constexpr double kG = 9.81;      // [m/s²]
-
-LawParams default_law() { return make_law(MaterialConfig{}); }
-double disc_mass() { return kRho * M_PI * kR * kR; }
-double default_dt() { return choose_timestep(disc_mass(), default_law(), 0.0, kDefaultSafety).dt; }
+using test::default_dt;
+using test::default_law;
+using test::disc_mass;
+using test::kG;
+using test::kR;
+using test::kRho;
 
 Wall segment(Vec2 a, Vec2 b) {
     Wall w;

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "orodem/setup/scenario.hpp"
+#include "default_disc.hpp"
 #include "test_util.hpp"
 
 using namespace orodem;
@@ -39,9 +40,10 @@ namespace {
 
 using test::SerialOmp;
 
-constexpr double kRho = 2500.0;  // [kg/m³]
-constexpr double kR = 0.5;       // [m]
-constexpr double kG = 9.81;      // [m/s²]
+using test::disc_mass;
+using test::kG;
+using test::kR;
+using test::kRho;
 
 struct Slope {
     Vec2 u;  // unit vector down the slope
@@ -63,8 +65,6 @@ LawParams incline_law(double damping_tangential = 0.0) {
     mat.damping_tangential = damping_tangential;
     return make_law(mat);
 }
-
-double disc_mass() { return kRho * M_PI * kR * kR; }
 
 Wall incline_wall(double theta, double mu) {
     const Slope s = slope_of(theta);

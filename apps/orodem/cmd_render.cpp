@@ -146,7 +146,7 @@ int cmd_measure(const std::string& run_dir) {
     const fs::path dir(run_dir);
     const Config c = load_config((dir / "config.toml").string());
     const std::string& e = c.run.experiment;
-    if (e != "exp1" && e != "exp2" && e != "exp3" && e != "critical-wedge")
+    if (!is_wedge(c))
         throw ConfigError(fmt::format("'{}' is a {} run, which has no wedge to measure; measure takes a run of "
                                       "exp1, exp2, exp3 or critical-wedge",
                                       run_dir, e));

@@ -128,7 +128,7 @@ public:
         return v;
     }
     /// required = true: a missing key is refused (there is no sensible default).
-    std::string choice(const char* key, const std::string& def, std::initializer_list<const char*> allowed,
+    std::string choice(const char* key, const std::string& def, const std::vector<const char*>& allowed,
                        bool required = false) {
         std::string list;
         for (const char* a : allowed) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", a);
@@ -358,6 +358,16 @@ void apply_override(toml::table& root, const Override& o, const std::string& fil
     t->insert_or_assign(std::string(path), std::move(*parsed.get("v")));  // a move keeps the value's source (--set)
 }
 
+/// The names of kExperiments, in its order.
+const std::vector<const char*>& experiment_names() {
+    static const std::vector<const char*> names = [] {
+        std::vector<const char*> v;
+        for (const Experiment& e : kExperiments) v.push_back(e.name);
+        return v;
+    }();
+    return names;
+}
+
 /// wedge.base_law or calibrate.base_law. Its default is "coulomb", except in
 /// a run directory's resolved config.toml (resolved_file) that lacks the key:
 /// an older orodem wrote it, whose base was the eq. 5 traction (legacy set).
@@ -471,10 +481,7 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
     {
         auto [in, o] = section("run");
         Reader r(in, "run.", file, *o, none);
-        c.run.experiment = r.choice("experiment", c.run.experiment,
-                                    {"settle", "critical-wedge", "exp1", "exp2", "exp3", "biaxial", "basal-friction",
-                                     "repose"},
-                                    true);
+        c.run.experiment = r.choice("experiment", c.run.experiment, experiment_names(), true);
         c.run.seed = static_cast<std::uint64_t>(r.integer("seed", static_cast<std::int64_t>(c.run.seed), 0, std::numeric_limits<std::int64_t>::max()));
         c.run.threads = static_cast<int>(r.integer("threads", c.run.threads, 0, 1024));
         c.run.output_interval = r.number("output_interval", c.run.output_interval, positive());
@@ -503,7 +510,7 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
         w.s_max = r.number("s_max", w.s_max, {0.0, 100.0, true, false});
         w.output_ds = r.number("output_ds", w.output_ds, {0.0, w.s_max, true, false});
         w.mu_bp = r.number("mu_bp", w.mu_bp, closed(0.0, 10.0));
-        if (c.run.experiment == "exp3")
+        if (experiment_of(c).retroside == Retroside::coulomb)
             w.mu_br_over_mu_bp = r.number("mu_br_over_mu_bp", w.mu_br_over_mu_bp, closed(0.0, 1000.0));
         w.base_law = read_base_law(r, in, resolved_file, c.legacy_base_law);
         if (w.base_law == "traction") {
@@ -515,7 +522,7 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
             refuse_traction_keys(r, in, "wedge", {"traction_gain", "drag_gain"});
         }
         w.pro_margin = r.number("pro_margin", w.pro_margin, {2.0, 1000.0, false, false});
-        if (c.run.experiment != "critical-wedge")
+        if (!experiment_of(c).backstop)
             w.retro_length = r.number("retro_length", w.retro_length, {1.0, 1000.0, false, false});
         w.toe_threshold = r.number("toe_threshold", w.toe_threshold, {0.0, 10.0, true, false});
         w.column_width = r.number("column_width", w.column_width, non_negative());
@@ -570,7 +577,7 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
         } else if (is_wedge(c)) {
             // Incoming plate long enough to reach s_max, plus the retroside cover.
             const WedgeConfig& w = c.wedge;
-            const double retro = c.run.experiment == "critical-wedge" ? 0.0 : w.retro_length;
+            const double retro = experiment_of(c).backstop ? 0.0 : w.retro_length;
             const double derived = (w.s_max + w.pro_margin + retro) * p.h0;
             // A run directory's config.toml holds the derived value; that exact
             // value is accepted so the file loads again (orodem run --resume).

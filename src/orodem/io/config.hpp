@@ -136,12 +136,38 @@ struct Config {
     bool legacy_base_law = false;
 };
 
-/// True for the calibration experiments (orodem calibrate): biaxial, basal-friction, repose.
-inline bool is_calibration(const Config& c) {
-    return c.run.experiment == "biaxial" || c.run.experiment == "basal-friction" || c.run.experiment == "repose";
+/// The experiments (run.experiment), in one table: what each one is and
+/// which boundaries it has (SPEC §2; setup/wedge.cpp builds them).
+enum class ExperimentClass { settle, wedge, calibration };
+enum class Retroside { none, fixed, coulomb };  // the retroside base of a wedge experiment
+struct Experiment {
+    const char* name;
+    ExperimentClass kind;
+    Retroside retroside;  // wedge experiments with a retroside
+    bool backstop;        // the singly vergent critical wedge's rigid backstop at x = 0
+};
+inline constexpr Experiment kExperiments[] = {
+    {"settle", ExperimentClass::settle, Retroside::none, false},
+    {"critical-wedge", ExperimentClass::wedge, Retroside::none, true},
+    {"exp1", ExperimentClass::wedge, Retroside::fixed, false},
+    {"exp2", ExperimentClass::wedge, Retroside::fixed, false},
+    {"exp3", ExperimentClass::wedge, Retroside::coulomb, false},
+    {"biaxial", ExperimentClass::calibration, Retroside::none, false},
+    {"basal-friction", ExperimentClass::calibration, Retroside::none, false},
+    {"repose", ExperimentClass::calibration, Retroside::none, false},
+};
+/// The table's row of a name; a name the table does not have (which the
+/// config loader refuses) is taken as settle.
+inline const Experiment& experiment_of(const std::string& name) {
+    for (const Experiment& e : kExperiments)
+        if (name == e.name) return e;
+    return kExperiments[0];
 }
-/// True for the wedge experiments (everything but "settle" and the calibrations).
-inline bool is_wedge(const Config& c) { return c.run.experiment != "settle" && !is_calibration(c); }
+inline const Experiment& experiment_of(const Config& c) { return experiment_of(c.run.experiment); }
+/// True for the calibration experiments (orodem calibrate): biaxial, basal-friction, repose.
+inline bool is_calibration(const Config& c) { return experiment_of(c).kind == ExperimentClass::calibration; }
+/// True for the wedge experiments (critical-wedge, exp1, exp2, exp3).
+inline bool is_wedge(const Config& c) { return experiment_of(c).kind == ExperimentClass::wedge; }
 
 /// One `--set key=value` override; value is TOML syntax (1.5, true, "clusters").
 using Override = std::pair<std::string, std::string>;

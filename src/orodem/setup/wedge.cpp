@@ -92,7 +92,7 @@ PlateEstimate plate_estimate(const Config& c) {
 ProfileParams wedge_profile_params(const Config& c) {
     const WedgeConfig& w = c.wedge;
     const double h0 = c.packing.h0;
-    const bool backstop = c.run.experiment == "critical-wedge";
+    const bool backstop = experiment_of(c).backstop;
     ProfileParams pp;
     pp.column = w.column_width;
     pp.x_min = -(w.s_max + w.pro_margin) * h0;  // the trailing end at the start
@@ -114,7 +114,7 @@ double undeformed_surface(const ParticleStore& p, const ProfileParams& pp) {
 WedgeSetup make_wedge(const Config& c, const ParticleStore& layer) {
     const WedgeConfig& w = c.wedge;
     const double h0 = c.packing.h0;
-    const bool backstop = c.run.experiment == "critical-wedge";
+    const bool backstop = experiment_of(c).backstop;
     const TimestepInfo t = timestep_for(c);
     check_wedge_base(c);
 
@@ -145,7 +145,8 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer) {
         // exp3's stationary Coulomb base: a rough wall under the eq. 5
         // traction law (as before the Coulomb base existed), a smooth wall
         // with a CoulombBase at rest under the default law.
-        const bool rough = c.run.experiment == "exp3" && w.base_law == "traction";
+        const bool coulomb_retro = experiment_of(c).retroside == Retroside::coulomb;
+        const bool rough = coulomb_retro && w.base_law == "traction";
         Wall retro_base{{0.0, 0.0}, {x_retro + far, 0.0}, {}, 0.0, false, rough,
                         rough ? w.mu_br_over_mu_bp * w.mu_bp : 0.0};
         retro_base.open_ends = true;
@@ -173,12 +174,12 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer) {
         base = std::make_unique<CoulombBase>(kWallProBase, w.v, w.mu_bp);
     ws.base = base.get();
     sim.boundaries.push_back(std::move(base));
-    if (c.run.experiment == "exp3" && w.base_law == "coulomb") {
+    if (experiment_of(c).retroside == Retroside::coulomb && w.base_law == "coulomb") {
         auto retro = std::make_unique<CoulombBase>(kWallRetro, 0.0, w.mu_br_over_mu_bp * w.mu_bp);
         ws.retro_base = retro.get();
         sim.boundaries.push_back(std::move(retro));
     }
-    if (c.run.experiment == "exp1" || c.run.experiment == "exp2") {
+    if (experiment_of(c).retroside == Retroside::fixed) {
         auto fixed = std::make_unique<FixedRetroside>(kWallRetro);
         ws.fixed_retro = fixed.get();
         sim.boundaries.push_back(std::move(fixed));

@@ -36,6 +36,7 @@
 #include "orodem/render/particle_view.hpp"
 #include "orodem/io/vtu_writer.hpp"
 #include "orodem/analysis/rel_disp.hpp"
+#include "orodem/analysis/strain.hpp"
 #include "orodem/engine/health.hpp"
 #include "orodem/io/checkpoint.hpp"
 
@@ -535,10 +536,15 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, LineFile& 
     auto draw = [&]() {
         const double S = c.wedge.v * sim.time / h0;
         const std::vector<double> rel = relative_displacement(sim, st.x_then);
-        st.x_then = positions_by_id(sim.particles);
+        std::vector<Vec2> x_now = positions_by_id(sim.particles);
+        // Strain over the interval since the previous output (none at S = 0):
+        // neighbourhoods of two mean disc diameters (analysis/strain.hpp).
+        const StrainField strain =
+            local_strain(st.x_then, x_now, 2.0 * (c.packing.r_min + c.packing.r_max));
+        st.x_then = std::move(x_now);
         const std::string name = fmt::format("S{:06.3f}", S);
         const VtuStamp stamp{S, sim.step_count, sim.time};
-        write_vtu(fmt::format("{}/snapshots/{}.vtu", dir, name), sim.particles, rel, &stamp);
+        write_vtu(fmt::format("{}/snapshots/{}.vtu", dir, name), sim.particles, rel, &stamp, &strain);
         st.pvd.emplace_back(S, fmt::format("snapshots/{}.vtu", name));
         write_pvd(dir + "/run.pvd", st.pvd);
         view.label = fmt::format("{}   S = {:.2f}   initial depth", c.run.experiment, S);

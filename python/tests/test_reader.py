@@ -85,7 +85,7 @@ def test_snapshot_equals_vtks_reading(run_dir):
     pts = vtk_to_numpy(grid.GetPoints().GetData())
     assert np.array_equal(pts[:, 0], s["x"]) and np.array_equal(pts[:, 1], s["y"])
     pd = grid.GetPointData()
-    assert pd.GetNumberOfArrays() == 9
+    assert pd.GetNumberOfArrays() == 13  # 9 per disc + the interval's strain (4)
     for k in range(pd.GetNumberOfArrays()):
         a = pd.GetArray(k)
         assert np.array_equal(vtk_to_numpy(a), s[a.GetName()]), a.GetName()

@@ -29,7 +29,7 @@ Array make_array(const std::string& name, const char* type, int comps, const std
 }  // namespace
 
 void write_vtu(const std::string& path, const ParticleStore& p, const std::vector<double>& rel_disp,
-               const VtuStamp* stamp) {
+               const VtuStamp* stamp, const StrainField* strain) {
     const std::size_t n = p.size();
     // Discs in id order, so that files of one run line up point by point.
     std::vector<double> pts(3 * n), vel(3 * n), radius(n), depth(n), omega(n), rd(n, 0.0);
@@ -61,6 +61,13 @@ void write_vtu(const std::string& path, const ParticleStore& p, const std::vecto
         make_array("rel_disp", "Float64", 1, rd),
         make_array("omega", "Float64", 1, omega),
         make_array("fixed", "Int32", 1, fixed)};
+    std::vector<Array> all_point_data = point_data;
+    if (strain && strain->shear.size() == n) {  // by id, as the points are written
+        all_point_data.push_back(make_array("shear_strain", "Float64", 1, strain->shear));
+        all_point_data.push_back(make_array("vol_strain", "Float64", 1, strain->volumetric));
+        all_point_data.push_back(make_array("rotation", "Float64", 1, strain->rotation));
+        all_point_data.push_back(make_array("d2min", "Float64", 1, strain->d2min));
+    }
     const Array points = make_array("Points", "Float64", 3, pts);
     const std::vector<Array> cells = {make_array("connectivity", "Int64", 1, conn),
                                       make_array("offsets", "Int64", 1, offs),
@@ -95,7 +102,7 @@ void write_vtu(const std::string& path, const ParticleStore& p, const std::vecto
     }
     xml += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", n, n);
     xml += "      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n";
-    for (const auto& a : point_data) declare(a);
+    for (const auto& a : all_point_data) declare(a);
     xml += "      </PointData>\n      <Points>\n";
     declare(points);
     xml += "      </Points>\n      <Cells>\n";

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "orodem/analysis/strain.hpp"
 #include "orodem/state/particles.hpp"
 
 namespace orodem {
@@ -24,9 +25,10 @@ struct VtuStamp {
 };
 
 /// rel_disp: per slot (may be empty: written as zeros). stamp: S, step and
-/// time as field data (none when null).
+/// time as field data (none when null). strain: by particle id, written as
+/// shear_strain, vol_strain, rotation and d2min (none when null).
 void write_vtu(const std::string& path, const ParticleStore& p, const std::vector<double>& rel_disp,
-               const VtuStamp* stamp = nullptr);
+               const VtuStamp* stamp = nullptr, const StrainField* strain = nullptr);
 
 /// run.pvd listing (S, file name relative to the pvd) pairs.
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& entries);

@@ -34,6 +34,23 @@ namespace {
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
+/// Refuses (before anything is generated) a calibration whose samples are
+/// too large to run (check_disc_budget).
+void check_calibration_size(const Config& c) {
+    const CalibrateConfig& k = c.calibrate;
+    const std::string& e = c.run.experiment;
+    const double length = e == "biaxial" ? k.width : e == "basal-friction" ? k.block_length : k.column_width;
+    const double height = e == "biaxial" ? k.height : e == "basal-friction" ? k.block_height : k.column_height;
+    for (const std::string& kind : k.kinds) {
+        PackingConfig pc = c.packing;
+        pc.kind = kind;
+        pc.length = length;
+        pc.h0 = height;
+        check_disc_budget(c, pc, "the calibration sample",
+                          "the [calibrate] sizes (width/height, block_length/block_height, column_width/column_height)");
+    }
+}
+
 Config load_calibration(const CommonArgs& a) {
     std::vector<Override> ov;
     for (const auto& s : a.sets) ov.push_back(parse_override(s));
@@ -44,6 +61,7 @@ Config load_calibration(const CommonArgs& a) {
                                       "runs \"biaxial\", \"basal-friction\" or \"repose\" (orodem run runs the others)",
                                       c.path, c.run.experiment));
     timestep_for(c);  // refuses a numerics.dt above the stability limit
+    check_calibration_size(c);
     return c;
 }
 
@@ -479,6 +497,7 @@ int cmd_calibrate(const CommonArgs& a, const std::string& out_arg) {
 
 int check_calibration(const Config& c) {
     const TimestepInfo t = timestep_for(c);
+    check_calibration_size(c);
     const CalibrateConfig& k = c.calibrate;
     std::cout << to_toml(c);
     fmt::print("# derived (run it with: orodem calibrate {})\n", c.path);
@@ -493,6 +512,8 @@ int check_calibration(const Config& c) {
         pc.kind = kind;
         pc.length = length;
         pc.h0 = h0;
+        check_disc_budget(c, pc, "the calibration sample",
+                          "the [calibrate] sizes (width/height, block_length/block_height, column_width/column_height)");
         return generate_packing(pc, c.material.density).size();
     };
     for (const std::string& kind : k.kinds) {

@@ -265,6 +265,10 @@ TEST_F(Cli, MessagesNameTheRealProblem) {
         {"sweep " + cfg + " --vary wedge.v=-1,0.1 --out " + quote((work_ / "sw").string()),
          "--vary wedge.v (the value -1): key 'wedge.v' = -1: must be a number > 0"},
         {"run " + cfg + " --threads -1", "--threads"},
+        {"check " + cfg + " --set packing.h0=1e308", "would have about inf discs"},
+        {"check " + quote((fs::path(ORODEM_SOURCE_DIR) / "configs" / "calibrate" / "basal-friction.toml").string()) +
+             " --set calibrate.block_height=1e7",
+         "the calibration sample (30 m long, 1e+07 m high"},
         {"resume /nonexistent --threads -3", "--threads"},
     };
     for (const Case& k : cases) {

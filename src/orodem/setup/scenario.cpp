@@ -83,19 +83,24 @@ double estimated_disc_count(const PackingConfig& pc) {
     return std::isfinite(n) ? n : std::numeric_limits<double>::infinity();
 }
 
-void check_model_size(const Config& c) {
-    const double n = estimated_disc_count(c.packing);
+void check_disc_budget(const Config& c, const PackingConfig& sample, const std::string& what,
+                       const std::string& keys) {
+    const double n = estimated_disc_count(sample);
     const double pages = static_cast<double>(::sysconf(_SC_PHYS_PAGES));
     const double memory = pages * static_cast<double>(::sysconf(_SC_PAGESIZE));  // [bytes]
     const double need = n * kBytesPerDisc;
     if (n <= kMaxDiscs && (memory <= 0.0 || need <= 0.8 * memory)) return;
-    const std::string keys = is_wedge(c) ? "packing.h0, wedge.s_max, wedge.pro_margin or wedge.retro_length"
-                                         : "packing.h0 or packing.length";
     throw ConfigError(fmt::format(
-        "{}: the layer ({:g} m long, h0 = {:g} m, radii {:g}-{:g} m) would have about {:.3g} discs and need about "
+        "{}: {} ({:g} m long, {:g} m high, radii {:g}-{:g} m) would have about {:.3g} discs and need about "
         "{:.3g} GB; orodem runs at most {:.0e} discs and {:.3g} GB (80% of this machine's memory); lower {}",
-        c.path, c.packing.length, c.packing.h0, c.packing.r_min, c.packing.r_max, n, need / 1e9, kMaxDiscs,
+        c.path, what, sample.length, sample.h0, sample.r_min, sample.r_max, n, need / 1e9, kMaxDiscs,
         0.8 * memory / 1e9, keys));
+}
+
+void check_model_size(const Config& c) {
+    check_disc_budget(c, c.packing, "the layer",
+                      is_wedge(c) ? "packing.h0, wedge.s_max, wedge.pro_margin or wedge.retro_length"
+                                  : "packing.h0 or packing.length");
 }
 
 std::size_t generated_particle_count(const Config& c) {

@@ -41,5 +41,9 @@ double estimated_disc_count(const PackingConfig& pc);
 /// estimate exceeds kMaxDiscs or needs more memory than the machine has
 /// (kBytesPerDisc per disc), naming the estimate and the keys to change.
 void check_model_size(const Config& c);
+/// The same for any sample (a calibration's block or column): `what` names
+/// it, `keys` the keys that shrink it.
+void check_disc_budget(const Config& c, const PackingConfig& sample, const std::string& what,
+                       const std::string& keys);
 
 }  // namespace orodem

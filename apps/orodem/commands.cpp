@@ -56,7 +56,8 @@ volatile std::sig_atomic_t g_signal_count = 0;  // how many came
 // default action (signal and raise are async-signal-safe).
 extern "C" void on_stop_signal(int sig) {
     if (g_stop_signal == 0) g_stop_signal = sig;
-    if (++g_signal_count >= 3) {
+    g_signal_count = g_signal_count + 1;  // (no ++ on a volatile: deprecated in C++20)
+    if (g_signal_count >= 3) {
         ::signal(sig, SIG_DFL);
         ::raise(sig);
     }

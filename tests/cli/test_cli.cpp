@@ -278,6 +278,16 @@ TEST_F(Cli, MessagesNameTheRealProblem) {
     }
 }
 
+// A layer of eleven million discs (below the size limit) is counted from its
+// area, not generated: check answers at once (generating it took 5 s).
+TEST_F(Cli, CheckOfAHugeLayerEstimatesItsDiscsInsteadOfGeneratingThem) {
+    const std::string cfg = quote((fs::path(ORODEM_SOURCE_DIR) / "configs" / "settle.toml").string());
+    const Result r = orodem("check " + cfg + " --set packing.length=1e6");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_HAS(r.out, "(estimated from the layer's area, within 3%)");
+    EXPECT_NEAR(number_after(r.out, "particles generated    = "), 1.13e7, 0.03 * 1.13e7);
+}
+
 TEST_F(Cli, CheckGivesTheInertialNumberAndWarnsOfAShortPlate) {
     // Paper-size Experiment 1: I = (v'/h0) (r_min + r_max) sqrt(1/(g h0)) =
     // (0.1/55) 1.5 / sqrt(9.81 55) = 1.17e-4. The plate: the critical taper

@@ -4,11 +4,13 @@
 // defaults resolve to the documented values.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "orodem/core/error.hpp"
 #include "orodem/io/config.hpp"
 #include "orodem/setup/scenario.hpp"
+#include "orodem/setup/wedge.hpp"
 
 using namespace orodem;
 
@@ -195,4 +197,23 @@ TEST(ModelSize, TheDiscEstimateMatchesGenerationAndAbsurdSizesAreRefusedAtOnce) 
             EXPECT_NE(m.find("lower packing.h0"), std::string::npos) << m;
         }
     }
+}
+
+// The plate estimate's inputs: the calibrated bulk friction (docs/validation.md
+// biaxial table) interpolated in mu_i, and the critical taper on it.
+TEST(PlateEstimate, BulkFrictionFromTheCalibrationTableAndTheFrontFromTheTaper) {
+    EXPECT_DOUBLE_EQ(bulk_friction_deg("clusters", 0.3), 24.4);
+    EXPECT_DOUBLE_EQ(bulk_friction_deg("discs", 0.2), 0.5 * (12.0 + 15.6));
+    EXPECT_DOUBLE_EQ(bulk_friction_deg("clusters", 2.0), 28.4);  // beyond the table: its last row
+    EXPECT_DOUBLE_EQ(bulk_friction_deg("hexagonal", 0.0), 7.2);  // the discs' row
+    Config c = parse_config(kWedge + "[wedge]\nmu_bp = 0.1\ns_max = 8.0\n", "run.toml", {});
+    const PlateEstimate e = plate_estimate(c);
+    EXPECT_DOUBLE_EQ(e.phi_deg, 24.4);
+    EXPECT_NEAR(e.phi_b_deg, std::atan(0.1) * 180.0 / M_PI, 1e-12);
+    EXPECT_NEAR(e.alpha_deg, 2.40, 0.01);  // orodem taper --phi 24.4 --mu-b 0.1
+    EXPECT_NEAR(e.front_h0, std::sqrt(16.0 / std::tan(e.alpha_deg * M_PI / 180.0)), 1e-12);
+    EXPECT_DOUBLE_EQ(e.pro_margin_min, e.front_h0 + 2.0);
+    // A base stronger than the material: phi_b is capped 0.5 deg below phi.
+    c = parse_config(kWedge + "[wedge]\nmu_bp = 0.8\n", "run.toml", {});
+    EXPECT_DOUBLE_EQ(plate_estimate(c).phi_b_deg, 24.4 - 0.5);
 }

@@ -20,6 +20,7 @@
 #include "orodem/io/config.hpp"
 #include "orodem/io/files.hpp"
 #include "orodem/render/calibration_plots.hpp"
+#include "orodem/run/run_dir.hpp"
 #include "orodem/setup/calibration.hpp"
 #include "orodem/setup/packing.hpp"
 #include "orodem/setup/scenario.hpp"
@@ -34,28 +35,8 @@ namespace {
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
-/// Refuses (before anything is generated) a calibration whose samples are
-/// too large to run (check_disc_budget).
-void check_calibration_size(const Config& c) {
-    const CalibrateConfig& k = c.calibrate;
-    const std::string& e = c.run.experiment;
-    const double length = e == "biaxial" ? k.width : e == "basal-friction" ? k.block_length : k.column_width;
-    const double height = e == "biaxial" ? k.height : e == "basal-friction" ? k.block_height : k.column_height;
-    for (const std::string& kind : k.kinds) {
-        PackingConfig pc = c.packing;
-        pc.kind = kind;
-        pc.length = length;
-        pc.h0 = height;
-        check_disc_budget(c, pc, "the calibration sample",
-                          "the [calibrate] sizes (width/height, block_length/block_height, column_width/column_height)");
-    }
-}
-
 Config load_calibration(const CommonArgs& a) {
-    std::vector<Override> ov;
-    for (const auto& s : a.sets) ov.push_back(parse_override(s));
-    if (a.threads >= 0) ov.push_back({"run.threads", std::to_string(a.threads)});
-    Config c = load_config(a.config, ov);
+    Config c = load(a);
     if (!is_calibration(c))
         throw ConfigError(fmt::format("{}: run.experiment = \"{}\" is not a calibration experiment; orodem calibrate "
                                       "runs \"biaxial\", \"basal-friction\" or \"repose\" (orodem run runs the others)",
@@ -492,61 +473,6 @@ int cmd_calibrate(const CommonArgs& a, const std::string& out_arg) {
     write_file_atomic(dir + "/report.md", md);
     log.line(fmt::format("done in {:.1f} s: report.md", total.seconds()));
     fmt::print("report in {}/report.md\n", dir);
-    return 0;
-}
-
-int check_calibration(const Config& c) {
-    const TimestepInfo t = timestep_for(c);
-    check_calibration_size(c);
-    const CalibrateConfig& k = c.calibrate;
-    std::cout << to_toml(c);
-    fmt::print("# derived (run it with: orodem calibrate {})\n", c.path);
-    fmt::print("dt                     = {:.6g} s (stability limit {:.6g} s, margin {:.2f}x)\n", t.dt, t.dt_crit,
-               t.margin());
-    const std::string& e = c.run.experiment;
-    const std::size_t values = e == "basal-friction" ? k.mu_bp_values.size() : k.mu_values.size();
-    fmt::print("tests                  = {} ({} packing kinds x {} values)\n", k.kinds.size() * values,
-               k.kinds.size(), values);
-    auto discs = [&](const std::string& kind, double length, double h0) {
-        PackingConfig pc = c.packing;
-        pc.kind = kind;
-        pc.length = length;
-        pc.h0 = h0;
-        check_disc_budget(c, pc, "the calibration sample",
-                          "the [calibrate] sizes (width/height, block_length/block_height, column_width/column_height)");
-        return generate_packing(pc, c.material.density).size();
-    };
-    for (const std::string& kind : k.kinds) {
-        if (e == "biaxial") {
-            const std::size_t n = discs(kind, k.width, std::max(c.packing.r_max,
-                                                                0.82 * k.height / 0.9 - 3.0 * c.packing.r_max));
-            const double steps = k.max_strain / (k.strain_rate * t.dt);
-            fmt::print("{:<22} = {} discs, {:.3g} steps of shear ({:.3g} disc-steps) plus compaction\n", kind, n,
-                       steps, steps * static_cast<double>(n));
-        } else if (e == "basal-friction") {
-            fmt::print("{:<22} = about {} discs before the cut, {:.3g} steps of belt motion\n", kind,
-                       discs(kind, k.block_length, k.block_height), k.duration / t.dt);
-        } else {
-            fmt::print("{:<22} = about {} discs before the cut, plus the floor\n", kind,
-                       discs(kind, k.column_width, k.column_height));
-        }
-    }
-    if (e == "biaxial") {
-        const double d = mean_disc_diameter(c);
-        fmt::print("strain rate            = {:.4g} 1/s, inertial number I = {:.3g} (limit {:g})\n", k.strain_rate,
-                   k.strain_rate * d * std::sqrt(c.material.density / k.confining_stress), k.max_inertial_number);
-    } else if (e == "basal-friction" && k.base_law == "coulomb") {
-        check_base_dashpot(c);
-        fmt::print("belt speed v'          = {:g} m/s (Coulomb base)\n", k.belt_speed);
-    } else if (e == "basal-friction") {
-        const double v_limit = lightest_mass(c) * c.numerics.gravity / (c.material.k_n * t.dt);
-        fmt::print("belt speed v'          = {:g} m/s (eq. 6 traction base; limit {:.4g} m/s, margin {:.1f}x)\n",
-                   k.belt_speed, v_limit, v_limit / k.belt_speed);
-        if (!(k.belt_speed < v_limit))
-            throw ConfigError(fmt::format("{}: key 'calibrate.belt_speed' = {:g}: must satisfy eq. 6, v' < m g / "
-                                          "(k_n dt) = {:g} m/s",
-                                          c.path, k.belt_speed, v_limit));
-    }
     return 0;
 }
 

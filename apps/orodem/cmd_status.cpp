@@ -3,11 +3,12 @@
 // (interrupted, stopped at a wall-time limit, resumed days later), so this
 // reads what the run directory already holds, writes nothing, and says: how
 // far the run got (S and steps), how its last piece ended (the last event
-// line of log.txt), the newest checkpoint, the last measured rate with the
+// of events.csv), the newest checkpoint, the last measured rate with the
 // time left at that rate, and the command that continues it.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -21,6 +22,8 @@
 #include "orodem/io/config.hpp"
 #include "orodem/io/files.hpp"
 #include "orodem/io/sweep_manifest.hpp"
+#include "orodem/run/run_dir.hpp"
+#include "orodem/run/run_log.hpp"
 
 namespace orodem {
 
@@ -28,17 +31,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
-
-/// The number after `key` in line (e.g. "dt = 0.00018 s" for key "dt = "); NaN when absent.
-double number_after(const std::string& line, const std::string& key) {
-    const std::size_t at = line.find(key);
-    if (at == std::string::npos) return std::nan("");
-    try {
-        return std::stod(line.substr(at + key.size()));
-    } catch (const std::exception&) {
-        return std::nan("");
-    }
+/// The leading number of a series.csv row (its step); NaN when there is none.
+double leading_number(const std::string& row) {
+    char* end = nullptr;
+    const double v = std::strtod(row.c_str(), &end);
+    return end == row.c_str() ? std::nan("") : v;
 }
 
 /// Prints the status of the run in dir; returns true when it is finished. A
@@ -59,42 +56,36 @@ bool status_of_run(const std::string& dir, bool in_sweep = false) {
                    continue_with);
         return false;
     }
-    // log.txt: the timestep, the last output line (S and rate) and the last event.
-    // The wall time of the pieces whose end line gives it ("... 2482.3 s wall").
-    std::string dt_line, last_output, last_event;
-    std::vector<double> rates;  // steps/s of each output line, in log order
+    // events.csv (or, for a run started before it existed, log.txt read the
+    // same way): the timestep, the last output (S and rate), the last event
+    // that starts or ends a piece, and the wall time of the pieces that say it.
+    const std::vector<EventRecord> events = read_events(dir);
+    double dt = std::nan(""), S = std::nan("");
+    std::vector<double> rates;  // steps/s of each output, in order
     double wall = 0.0;
     int pieces = 0, pieces_timed = 0;
-    if (fs::exists(dir + "/log.txt")) {
-        std::istringstream log(read_file(dir + "/log.txt"));
-        for (std::string line; std::getline(log, line);) {
-            if (starts_with(line, "dt = ")) dt_line = line;
-            if (starts_with(line, "S = ")) {
-                last_output = line;
-                rates.push_back(number_after(line, "asleep; "));
-            }
-            if (starts_with(line, "orodem ") || starts_with(line, "resumed by")) ++pieces;
-            if (starts_or_ends_a_piece(line)) last_event = line;
-            if (const std::size_t at = line.find(" s wall"); ends_a_piece(line) && at != std::string::npos) {
-                const std::size_t sp = line.rfind(' ', at - 1);  // the number is the word before " s wall"
-                const double secs = sp == std::string::npos ? std::nan("") : number_after(line.substr(sp + 1), "");
-                if (std::isfinite(secs)) {
-                    wall += secs;
-                    ++pieces_timed;
-                }
-            }
+    for (const EventRecord& e : events) {
+        if (e.kind == RunEvent::start && std::isfinite(e.dt)) dt = e.dt;
+        if (e.kind == RunEvent::output) {
+            S = e.S;
+            rates.push_back(e.steps_per_s);
+        }
+        if (e.kind == RunEvent::start || e.kind == RunEvent::resume) ++pieces;
+        if (ends_a_piece(e.kind) && std::isfinite(e.wall_s)) {
+            wall += e.wall_s;
+            ++pieces_timed;
         }
     }
+    const EventRecord* last = last_piece_event(events);
+    const std::string last_event = last ? last->text : std::string();
     // series.csv: the step of the last row (exact; S in the log is rounded).
     double last_step = std::nan("");
     if (fs::exists(dir + "/series.csv")) {
         const std::string series = read_file(dir + "/series.csv");
         const std::size_t end = series.find_last_not_of('\n');
         const std::size_t begin = end == std::string::npos ? std::string::npos : series.rfind('\n', end);
-        if (begin != std::string::npos) last_step = number_after(series.substr(begin + 1), "");
+        if (begin != std::string::npos) last_step = leading_number(series.substr(begin + 1));
     }
-    const double dt = number_after(dt_line, "dt = ");
-    const double S = number_after(last_output, "S = ");
     // The rate of an output line is the wall clock since the one before, so a
     // run paused (SIGSTOP, a suspended machine) or shared with other work
     // shows one low rate: the estimate takes the median of the last three
@@ -114,9 +105,9 @@ bool status_of_run(const std::string& dir, bool in_sweep = false) {
     else
         fmt::print("progress: no output yet (the packing may still be settling)\n");
 
-    const bool finished = starts_with(last_event, "finished:");
+    const bool finished = last && last->kind == RunEvent::finished;
     std::string state;
-    if (ends_a_piece(last_event)) {
+    if (last && ends_a_piece(last->kind)) {
         state = last_event;
     } else {
         // No end line after the last start: the process is still running, or
@@ -153,26 +144,6 @@ bool status_of_run(const std::string& dir, bool in_sweep = false) {
 }
 
 }  // namespace
-
-std::string duration_text(double secs) {
-    if (secs < 120.0) return fmt::format("{:.0f} s", secs);
-    if (secs < 7200.0) return fmt::format("{:.0f} min", secs / 60.0);
-    return fmt::format("{:.1f} h", secs / 3600.0);
-}
-
-std::string last_run_event(const std::string& dir) {
-    std::error_code ec;
-    if (!fs::exists(dir + "/log.txt", ec)) return "";
-    std::string last;
-    std::istringstream log(read_file(dir + "/log.txt"));
-    for (std::string line; std::getline(log, line);)
-        if (starts_or_ends_a_piece(line)) last = line;
-    return last;
-}
-
-bool last_run_event_is(const std::string& dir, const char* prefix) {
-    return starts_with(last_run_event(dir), prefix);
-}
 
 int cmd_status(const std::string& dir) {
     // A sweep's folder (orodem sweep): the status of each member run, in the

@@ -35,6 +35,10 @@
 #include "orodem/io/series_reader.hpp"
 #include "orodem/io/sweep_manifest.hpp"
 #include "orodem/io/packing_file.hpp"
+#include "orodem/run/run_dir.hpp"
+#include "orodem/run/run_log.hpp"
+#include "orodem/run/run_plots.hpp"
+#include "orodem/run/runner.hpp"
 
 extern char** environ;
 
@@ -76,9 +80,11 @@ MemberState member_state(const Config& c, const std::string& dir) {
         return fs::exists(dir + "/packing.bin") ? MemberState::finished : MemberState::start;
     }
     if (!fs::exists(dir + "/log.txt")) return MemberState::start;
-    if (last_run_event_is(dir, "finished:")) return MemberState::finished;
+    const std::vector<EventRecord> events = read_events(dir);
+    const EventRecord* last = last_piece_event(events);
+    if (last && last->kind == RunEvent::finished) return MemberState::finished;
     // Resuming would repeat the same failure from the same state.
-    if (last_run_event_is(dir, "UNSTABLE:") || last_run_event_is(dir, "STOPPED:")) return MemberState::failed;
+    if (last && (last->kind == RunEvent::unstable || last->kind == RunEvent::stopped)) return MemberState::failed;
     return MemberState::resume;
 }
 
@@ -98,17 +104,19 @@ int run_member(const Config& c, const std::string& dir, const std::string& label
     if (st == MemberState::finished || st == MemberState::failed) return report_done(st, dir, label);
     if (st == MemberState::resume) {
         fmt::print("sweep: {}: continuing {}\n", label, dir);
-        return resume_run(c, dir);
+        TerminalObserver terminal;
+        return resume_run(c, dir, terminal);
     }
     if (!is_wedge(c)) {
         // What an interrupted settling left, but the config and the output of a parallel sweep's child.
         std::vector<fs::path> partial;
         for (const auto& e : fs::directory_iterator(dir))
             if (e.path().filename() != "config.toml" && e.path().filename() != "console.txt") partial.push_back(e.path());
-        for (const auto& q : partial) fs::remove_all(q);
+        for (const auto& q : partial) remove_path(q.string());
     }
     fmt::print("sweep: {} -> {}\n", label, dir);
-    return start_run_in(c, dir);
+    TerminalObserver terminal;
+    return start_run_in(c, dir, terminal);
 }
 
 /// A member's config, from its config.toml (threads >= 0 overrides run.threads).
@@ -130,7 +138,11 @@ Config member_config(const std::string& root, const std::string& dir, int thread
 int finish_sweep(const std::string& root, const SweepManifest& m, const std::vector<std::string>& dirs,
                  const std::vector<std::string>& failed, bool all_wedges) {
     // A sweep over the seeds is an ensemble: its mean over the seeds' band.
-    if (all_wedges && !dirs.empty()) cmd_plot(dirs, root + "/plots.png", is_seed_key(m.key));
+    if (all_wedges && !dirs.empty()) {
+        const RunPlot p = plot_runs(dirs, root + "/plots.png", is_seed_key(m.key));
+        for (const std::string& n : p.notes) fmt::print("plot: {}\n", n);
+        fmt::print("plot: {}\n", p.path);
+    }
     fmt::print("sweep outputs in {}/\n", root);
     if (failed.empty()) return 0;
     std::string list;
@@ -207,7 +219,8 @@ int run_members_parallel(const std::string& root, const SweepManifest& m, int th
         settled.push_back(cache);
         if (fs::exists(cache)) continue;
         fmt::print("sweep: settling the packing of {} first ({})\n", member_label(m, m.values[k]), cache);
-        ensure_packing_cached(configs[k], root + "/log.txt");
+        TerminalObserver terminal;
+        ensure_packing_cached(configs[k], root, terminal);
     }
     const std::string exe = self_exe();
     const int child_threads = threads >= 0 ? threads : std::max(1, omp_get_num_procs() / jobs);

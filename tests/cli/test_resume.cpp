@@ -104,8 +104,12 @@ TEST_F(Resume, AResumeKeepsThePiecesHistoryButNotTheRowsBeyondTheCheckpoint) {
     ASSERT_EQ(wait_for(p), 143) << slurp(p.err);
     const std::string killed_start = "resumed by orodem 0.0.0 from x.bin at step 1 (S = 0.0000) with 1 threads";
     {
+        // What such a piece leaves: its lines in log.txt and their rows in events.csv.
         std::ofstream log(run / "log.txt", std::ios::app);
         log << killed_start << "\nS = 9.999: a row beyond the checkpoint\n";
+        std::ofstream events(run / "events.csv", std::ios::app);
+        events << "resume,1,0,,,,\"" << killed_start << "\"\noutput,2,9.999,,,1000,\"S = 9.999: a row beyond the "
+                  "checkpoint\"\n";
     }
     const Proc r = start({"resume", run.string(), "--threads", "1"}, root_ / "P-resume");
     ASSERT_EQ(wait_for(r), 0) << slurp(r.err);
@@ -513,6 +517,30 @@ TEST_F(Resume, StatusEstimatesTheTimeLeftFromTheMedianOfTheLastThreeRates) {
     write(dir / "log.txt", head + "S = 0.500: H/h0 = 0.1; 0 discs asleep; 20 steps/s\n");
     ASSERT_EQ(run(std::string(ORODEM_EXE) + " status " + quote(dir.string()), &out), 0) << out;
     EXPECT_NE(out.find("rate: 700 steps/s (median of the last 2 outputs); about "), std::string::npos) << out;
+}
+
+TEST_F(Resume, StatusReadsEventsCsvNotTheProseOfTheLog) {
+    // A run of this orodem has events.csv: status takes the numbers from it
+    // and does not parse log.txt (here prose that says something else).
+    const fs::path dir = root_ / "events";
+    fs::create_directories(dir);
+    for (const char* f : {"config.toml", "series.csv"}) fs::copy_file(reference_ / f, dir / f);
+    write(dir / "log.txt", "orodem 0.1.0 run of c.toml (exp1) with 1 threads\nS = 0.900: 5 discs asleep; 1 steps/s\n"
+                           "finished: S = 0.900 after 1 steps, 1.0 s wall\n");
+    write(dir / "events.csv",
+          "event,step,S,dt,wall_s,steps_per_s,text\n"
+          "start,0,,0.0001,,,\"orodem 0.1.0 run of c.toml (exp1) with 1 threads\"\n"
+          "output,2500,0.25,,,600,\"S = 0.250\"\n"
+          "output,5000,0.5,,,650,\"S = 0.500\"\n"
+          "interrupted,5100,0.51,,42.5,,\"interrupted by SIGTERM at step 5100 (S = 0.5100) after 42.5 s wall; "
+          "checkpoint x\"\n");
+    std::string out;
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " status " + quote(dir.string()), &out), 0) << out;
+    EXPECT_NE(out.find("progress: S = 0.500 of 0.5"), std::string::npos) << out;
+    EXPECT_NE(out.find("state: interrupted by SIGTERM at step 5100"), std::string::npos) << out;
+    EXPECT_NE(out.find("wall time: 42 s in 1 of its 1 piece"), std::string::npos) << out;
+    EXPECT_NE(out.find("rate: 650 steps/s (median of the last 2 outputs)"), std::string::npos) << out;
+    EXPECT_NE(out.find("continue with: orodem resume"), std::string::npos) << out;
 }
 
 TEST_F(Resume, StatusSaysHowFarARunGotHowItEndedAndHowToContinueIt) {

@@ -66,7 +66,7 @@ struct Header {
 };
 
 /// check_hash = false: the file's own integrity only (magic, version, sizes, checksums).
-Header read_header(std::string_view bytes, std::uint64_t expected_hash, bool check_hash = true) {
+Header read_header(std::string_view bytes, AcceptedHashes expected_hash, bool check_hash = true) {
     if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
         throw CheckpointError("not an orodem checkpoint (wrong magic bytes)");
     ByteReader r(bytes.substr(sizeof kMagic));
@@ -97,25 +97,45 @@ Header read_header(std::string_view bytes, std::uint64_t expected_hash, bool che
                                           bytes.size() - start, size));
     h.payload = bytes.substr(start);
     if (fnv(h.payload) != payload_sum) throw CheckpointError("payload checksum mismatch (corrupt file)");
-    if (check_hash && h.info.config_hash != expected_hash)
+    if (check_hash && !expected_hash.accepts(h.info.config_hash))
         throw ConfigError(fmt::format("the checkpoint was made with another config (hash {:016x}, this config "
                                       "{:016x}); resume with the run's own config.toml and the same --set values",
-                                      h.info.config_hash, expected_hash));
+                                      h.info.config_hash, expected_hash.current));
     return h;
 }
 
 }  // namespace
 
-std::uint64_t config_hash(const Config& c) {
+namespace {
+
+/// with_cache_dir: the hash of orodem before kResultNeutralKeys, which hashed packing.cache_dir.
+std::uint64_t hash_without_neutral_keys(const Config& c, bool with_cache_dir) {
     Config n = c;
-    if (toml::table* run = n.resolved["run"].as_table()) {
-        if (run->contains("threads")) run->insert_or_assign("threads", std::int64_t{0});
-        if (run->contains("checkpoint_minutes")) run->insert_or_assign("checkpoint_minutes", 0.0);
-        if (run->contains("max_wall_minutes")) run->insert_or_assign("max_wall_minutes", 0.0);
+    // Each result-neutral key is set to one fixed value of its type (the
+    // values the hash has always used), which to_toml_without_defaults then
+    // leaves out where it is the default.
+    for (const ResultNeutralKey& k : kResultNeutralKeys) {
+        toml::table* section = n.resolved[k.section].as_table();
+        if (!section || !section->contains(k.key)) continue;
+        if (section->get(k.key)->is_string()) {
+            if (!with_cache_dir) section->insert_or_assign(k.key, std::string());
+        } else if (std::string_view(k.key) == "threads") {
+            section->insert_or_assign(k.key, std::int64_t{0});
+        } else {
+            section->insert_or_assign(k.key, 0.0);
+        }
     }
     // Defaults are left out so that a newer orodem, which adds keys with
     // their defaults, still resumes the checkpoints of an older one.
     return fnv(to_toml_without_defaults(n));
+}
+
+}  // namespace
+
+std::uint64_t config_hash(const Config& c) { return hash_without_neutral_keys(c, false); }
+
+AcceptedHashes accepted_config_hashes(const Config& c) {
+    return {hash_without_neutral_keys(c, false), hash_without_neutral_keys(c, true)};
 }
 
 std::string encode_checkpoint(const Simulation& sim, const RunLoopState& run, std::uint64_t cfg_hash) {
@@ -186,11 +206,11 @@ bool checkpoint_file_intact(const std::string& path) {
     }
 }
 
-CheckpointInfo verify_checkpoint(std::string_view bytes, std::uint64_t expected_config_hash) {
+CheckpointInfo verify_checkpoint(std::string_view bytes, AcceptedHashes expected_config_hash) {
     return read_header(bytes, expected_config_hash).info;
 }
 
-void decode_checkpoint(std::string_view bytes, std::uint64_t expected_config_hash, Simulation& sim,
+void decode_checkpoint(std::string_view bytes, AcceptedHashes expected_config_hash, Simulation& sim,
                        RunLoopState& run_out) {
     const Header h = read_header(bytes, expected_config_hash);
     ByteReader r(h.payload);
@@ -384,7 +404,7 @@ std::string write_checkpoint(const std::string& dir, std::uint64_t step, std::st
     return path;
 }
 
-std::string restore_newest_checkpoint(const std::string& dir, std::uint64_t expected_config_hash, Simulation& sim,
+std::string restore_newest_checkpoint(const std::string& dir, AcceptedHashes expected_config_hash, Simulation& sim,
                                       RunLoopState& run, std::vector<std::string>* notes) {
     const auto all = list_checkpoints(dir);
     std::string reasons;

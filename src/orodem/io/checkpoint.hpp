@@ -40,7 +40,7 @@ public:
     using IoError::IoError;
 };
 
-/// The run loop's own state (apps/orodem run_wedge) at the checkpoint.
+/// The run loop's own state (run/wedge_run.hpp) at the checkpoint.
 struct RunLoopState {
     std::uint64_t outputs = 0;                          // output rows written so far
     std::vector<Vec2> x_then;                           // positions by id at the last output
@@ -51,10 +51,22 @@ struct RunLoopState {
 };
 
 /// FNV-1a 64 of the resolved config without the keys at their defaults
-/// (to_toml_without_defaults) and without run.threads, run.checkpoint_minutes
-/// and run.max_wall_minutes: those do not change results, so a run may resume
-/// with others; and a newer orodem that adds keys still resumes the run.
+/// (to_toml_without_defaults) and without the result-neutral keys
+/// (kResultNeutralKeys, io/config.hpp): a run may resume with other values of
+/// those; and a newer orodem that adds keys still resumes the run.
 std::uint64_t config_hash(const Config& c);
+
+/// The config hashes a checkpoint of c may carry: config_hash(c), and the hash
+/// an orodem before the result-neutral table gave it (packing.cache_dir was
+/// hashed then; the two differ only for a non-default cache_dir). Converts
+/// from one hash (tests, and callers that know the exact one).
+struct AcceptedHashes {
+    AcceptedHashes(std::uint64_t h) : current(h), earlier(h) {}  // NOLINT: implicit on purpose
+    AcceptedHashes(std::uint64_t now, std::uint64_t before) : current(now), earlier(before) {}
+    bool accepts(std::uint64_t h) const { return h == current || h == earlier; }
+    std::uint64_t current, earlier;
+};
+AcceptedHashes accepted_config_hashes(const Config& c);
 
 /// The checkpoint file bytes of sim and run.
 std::string encode_checkpoint(const Simulation& sim, const RunLoopState& run, std::uint64_t config_hash);
@@ -69,14 +81,14 @@ struct CheckpointInfo {
 
 /// Checks the header and checksums; throws CheckpointError naming the problem,
 /// or ConfigError when the config hash differs from expected_config_hash.
-CheckpointInfo verify_checkpoint(std::string_view bytes, std::uint64_t expected_config_hash);
+CheckpointInfo verify_checkpoint(std::string_view bytes, AcceptedHashes expected_config_hash);
 
 /// Restores a verified checkpoint into sim, which must have been built by the
 /// same scenario code as the saved one (same walls and boundaries; particles
 /// and contacts are replaced). Does not call sim.initialize(). Throws as
 /// verify_checkpoint, or CheckpointError when the contents do not fit sim;
 /// on any throw sim and run are unchanged.
-void decode_checkpoint(std::string_view bytes, std::uint64_t expected_config_hash, Simulation& sim,
+void decode_checkpoint(std::string_view bytes, AcceptedHashes expected_config_hash, Simulation& sim,
                        RunLoopState& run);
 
 /// Writes bytes to DIR/ckpt-<step>.bin atomically and reads them back, then
@@ -97,7 +109,7 @@ std::vector<std::pair<std::uint64_t, std::string>> list_checkpoints(const std::s
 /// back to older ones; `notes` gets one line per file skipped and why.
 /// Returns the path used. Throws CheckpointError when none is usable, and
 /// ConfigError (not falling back) when a checkpoint was made from another config.
-std::string restore_newest_checkpoint(const std::string& dir, std::uint64_t expected_config_hash, Simulation& sim,
+std::string restore_newest_checkpoint(const std::string& dir, AcceptedHashes expected_config_hash, Simulation& sim,
                                       RunLoopState& run, std::vector<std::string>* notes = nullptr);
 
 }  // namespace orodem

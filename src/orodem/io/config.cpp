@@ -4,6 +4,7 @@
 // type and range here, before anything runs.
 #include "orodem/io/config.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "orodem/core/error.hpp"
+#include "orodem/io/files.hpp"
 
 namespace orodem {
 
@@ -735,6 +737,58 @@ std::string to_toml_without_defaults(const Config& c) {
         // An experiment without a valid all-defaults config keeps every key.
     }
     return to_toml(n);
+}
+
+bool is_result_neutral(const std::string& dotted_key) {
+    for (const ResultNeutralKey& k : kResultNeutralKeys)
+        if (dotted_key == fmt::format("{}.{}", k.section, k.key)) return true;
+    return false;
+}
+
+std::string first_config_difference(const Config& a, const Config& b) {
+    auto lines = [](const Config& c) {
+        std::vector<std::string> out;
+        std::istringstream in(to_toml(c));
+        std::string section, l;
+        while (std::getline(in, l)) {
+            if (!l.empty() && l[0] == '[') section = l;
+            const std::size_t eq = l.find(" =");
+            if (eq != std::string::npos && section.size() > 2 &&
+                is_result_neutral(section.substr(1, section.size() - 2) + "." + l.substr(0, eq)))
+                continue;
+            out.push_back(section + " " + l);
+        }
+        return out;
+    };
+    const auto la = lines(a), lb = lines(b);
+    for (std::size_t k = 0; k < std::max(la.size(), lb.size()); ++k) {
+        const std::string x = k < la.size() ? la[k] : "(nothing)", y = k < lb.size() ? lb[k] : "(nothing)";
+        if (x != y) return fmt::format("the run has '{}', this config has '{}'", x, y);
+    }
+    return "";
+}
+
+std::string experiment_in(const std::string& config_text) {
+    try {
+        const toml::table t = toml::parse(std::string_view(config_text));
+        return t["run"]["experiment"].value_or(std::string());
+    } catch (const toml::parse_error&) {
+        return {};
+    }
+}
+
+ConfigBasics read_config_basics(const std::string& path) {
+    toml::table config;
+    try {
+        config = toml::parse(std::string_view(read_file(path)), std::string_view(path));
+    } catch (const toml::parse_error& e) {
+        throw IoError(fmt::format("'{}': not readable as TOML: {}", path, e.description()));
+    }
+    ConfigBasics b;
+    b.h0 = config["packing"]["h0"].value_or(std::numeric_limits<double>::quiet_NaN());
+    if (!(b.h0 > 0)) throw ConfigError(fmt::format("'{}': no positive packing.h0", path));
+    b.experiment = config["run"]["experiment"].value_or(std::string("run"));
+    return b;
 }
 
 }  // namespace orodem

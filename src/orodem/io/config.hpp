@@ -169,6 +169,38 @@ inline bool is_calibration(const Config& c) { return experiment_of(c).kind == Ex
 /// True for the wedge experiments (critical-wedge, exp1, exp2, exp3).
 inline bool is_wedge(const Config& c) { return experiment_of(c).kind == ExperimentClass::wedge; }
 
+/// The keys that do not change a run's results, in one table: a run may be
+/// resumed with other values (config_hash leaves them out), `orodem run
+/// --resume` does not name them as a difference, and `orodem plot` does not
+/// label runs by them. A key belongs here only if every output is
+/// byte-identical whatever its value.
+struct ResultNeutralKey {
+    const char* section;
+    const char* key;
+    const char* why;
+};
+inline constexpr ResultNeutralKey kResultNeutralKeys[] = {
+    {"run", "threads", "the results are identical at any thread count"},
+    {"run", "checkpoint_minutes", "when checkpoints are written, not what is computed"},
+    {"run", "max_wall_minutes", "where a piece of the run stops; the resumed run is identical"},
+    {"packing", "cache_dir", "where settled packings are kept; a packing is found by what settles it"},
+};
+/// True for "run.threads" and the other keys of kResultNeutralKeys.
+bool is_result_neutral(const std::string& dotted_key);
+/// The first line where the resolved configs differ, leaving out the
+/// result-neutral keys: "the run has '[s] k = a', this config has '[s] k = b'"; "" if none.
+std::string first_config_difference(const Config& a, const Config& b);
+/// run.experiment of a config file's text, read leniently (a config of another
+/// orodem version, or with errors, still gives its name); "" when absent or not TOML.
+std::string experiment_in(const std::string& config_text);
+/// What `orodem render` needs of a run's config.toml, read leniently as
+/// experiment_in: IoError when it is not TOML, ConfigError without a positive packing.h0.
+struct ConfigBasics {
+    std::string experiment;  // "run" when absent
+    double h0 = 0.0;         // [m]
+};
+ConfigBasics read_config_basics(const std::string& path);
+
 /// One `--set key=value` override; value is TOML syntax (1.5, true, "clusters").
 using Override = std::pair<std::string, std::string>;
 

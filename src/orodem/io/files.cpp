@@ -9,6 +9,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include "orodem/core/error.hpp"
 
 namespace orodem {
@@ -90,6 +92,28 @@ void LineFile::line(std::string_view text) {
     if (std::fwrite(text.data(), 1, text.size(), f_) != text.size() || std::fputc('\n', f_) == EOF ||
         std::fflush(f_) != 0)
         throw_io_error("cannot write", path_);
+}
+
+std::uint64_t file_bytes(const std::string& path) {
+    std::error_code ec;
+    const auto n = std::filesystem::file_size(path, ec);
+    if (ec) throw IoError(fmt::format("cannot stat '{}': {}", path, ec.message()));
+    return static_cast<std::uint64_t>(n);
+}
+
+void truncate_file(const std::string& path, std::uint64_t bytes) {
+    const std::uint64_t now = file_bytes(path);
+    if (now < bytes)
+        throw IoError(fmt::format("'{}' has {} bytes, fewer than the {} it had at the checkpoint; the run directory "
+                                  "was changed after the checkpoint, so it cannot be resumed exactly",
+                                  path, now, bytes));
+    if (::truncate(path.c_str(), static_cast<off_t>(bytes)) != 0) throw_io_error("cannot truncate", path);
+}
+
+void remove_path(const std::string& path) {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+    if (ec) throw IoError(fmt::format("cannot remove '{}': {}", path, ec.message()));
 }
 
 }  // namespace orodem

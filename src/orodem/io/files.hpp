@@ -4,6 +4,7 @@
 // path and the OS error.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -18,6 +19,13 @@ std::string read_file(const std::string& path);
 
 /// Creates a directory and its parents; throws IoError on failure.
 void make_dirs(const std::string& path);
+/// The size of a file [bytes]; throws IoError if it cannot be queried.
+std::uint64_t file_bytes(const std::string& path);
+/// Cuts a file back to `bytes` (its length at a checkpoint); throws IoError
+/// if it is shorter than that (changed since) or cannot be cut.
+void truncate_file(const std::string& path, std::uint64_t bytes);
+/// Removes a file or a directory tree if present; throws IoError on failure.
+void remove_path(const std::string& path);
 
 /// An append-only text file (log.txt, series.csv) whose every line is
 /// written and flushed at once, and whose errors throw IoError.

@@ -12,6 +12,7 @@
 #include <toml++/toml.h>
 
 #include "orodem/core/error.hpp"
+#include "orodem/io/config.hpp"
 #include "orodem/io/files.hpp"
 
 namespace orodem {
@@ -111,8 +112,6 @@ Series read_series_csv(const std::string& path) {
 
 namespace {
 
-/// Keys that do not change the physics of a run.
-const std::set<std::string> kIgnored = {"run.threads", "packing.cache_dir"};
 /// Keys that change only the random packing (the seed groups of seed_groups).
 const std::set<std::string> kSeedKeys = {"run.seed", "packing.seed"};
 
@@ -146,7 +145,7 @@ std::vector<std::string> legend_labels(const std::vector<std::string>& config_te
         for (const auto& [k, v] : f) keys.insert(k);
     std::vector<std::string> differing;
     for (const std::string& k : keys) {
-        if (kIgnored.count(k) || (ignore_seeds && kSeedKeys.count(k))) continue;
+        if (is_result_neutral(k) || (ignore_seeds && kSeedKeys.count(k))) continue;
         for (std::size_t i = 1; i < n; ++i) {
             const auto a = flat[0].find(k), b = flat[i].find(k);
             const bool same = (a == flat[0].end()) == (b == flat[i].end()) &&
@@ -201,7 +200,7 @@ std::vector<std::size_t> seed_groups(const std::vector<std::string>& config_text
                                      const std::vector<std::string>& sources) {
     auto flat = flat_configs(config_texts, names, sources);
     for (auto& f : flat) {
-        for (const std::string& k : kIgnored) f.erase(k);
+        for (const ResultNeutralKey& k : kResultNeutralKeys) f.erase(fmt::format("{}.{}", k.section, k.key));
         for (const std::string& k : kSeedKeys) f.erase(k);
     }
     std::vector<std::size_t> group(flat.size());

@@ -180,4 +180,33 @@ VtuData read_vtu(const std::string& path) {
     return out;
 }
 
+const std::vector<double>& VtuData::require(const std::string& name, const std::string& path) const {
+    const auto* a = find(name);
+    if (!a) throw IoError(fmt::format("'{}': snapshot has no '{}' array", path, name));
+    return *a;
+}
+
+std::vector<Snapshot> read_pvd(const std::string& path) {
+    const std::string b = read_file(path);
+    auto attr = [&](std::size_t tag, std::size_t end, const std::string& key) -> std::string {
+        const auto k = b.find(" " + key + "=\"", tag);
+        if (k == std::string::npos || k > end) throw IoError(fmt::format("'{}': DataSet without {}", path, key));
+        const auto v = k + key.size() + 3;
+        return b.substr(v, b.find('"', v) - v);
+    };
+    std::vector<Snapshot> out;
+    for (auto pos = b.find("<DataSet"); pos != std::string::npos; pos = b.find("<DataSet", pos + 1)) {
+        const auto end = b.find('>', pos);
+        const std::string ts = attr(pos, end, "timestep");
+        char* stop = nullptr;
+        const double S = std::strtod(ts.c_str(), &stop);
+        if (stop == ts.c_str()) throw IoError(fmt::format("'{}': timestep '{}' is not a number", path, ts));
+        Snapshot s{S, attr(pos, end, "file")};
+        if (!out.empty() && out.back().file == s.file) out.back() = s;
+        else out.push_back(s);
+    }
+    if (out.empty()) throw IoError(fmt::format("'{}': lists no snapshots", path));
+    return out;
+}
+
 }  // namespace orodem

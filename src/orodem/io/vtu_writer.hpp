@@ -39,7 +39,18 @@ struct VtuData {
     std::vector<Vec2> x;
     std::vector<std::pair<std::string, std::vector<double>>> arrays;  // name -> per point (first component)
     const std::vector<double>* find(const std::string& name) const;
+    /// The array `name`; IoError "'path': snapshot has no 'name' array" when absent.
+    const std::vector<double>& require(const std::string& name, const std::string& path) const;
 };
 VtuData read_vtu(const std::string& path);
+
+/// One snapshot listed in a run.pvd.
+struct Snapshot {
+    double S;
+    std::string file;  // relative to the run directory
+};
+/// The (S, file) entries of run.pvd, one per file (the last S of a repeated
+/// file); IoError when it lists none or cannot be read.
+std::vector<Snapshot> read_pvd(const std::string& path);
 
 }  // namespace orodem

@@ -163,4 +163,17 @@ void render_particles(const ParticleStore& p, const std::vector<double>* scalar,
     write_file_atomic(path, bytes);
 }
 
+int render_picture_pair(const ParticleStore& p, const std::vector<double>* rel, ViewOptions view,
+                        const std::string& experiment, double S, const std::string& figures_dir,
+                        const std::string& name, const std::string& ext) {
+    view.label = fmt::format("{}   S = {:.2f}   initial depth", experiment, S);
+    view.color_by = "horizons";
+    render_particles(p, nullptr, view, fmt::format("{}/horizons_{}.{}", figures_dir, name, ext));
+    if (!rel) return 1;
+    view.label = fmt::format("{}   S = {:.2f}   relative displacement since the previous output", experiment, S);
+    view.color_by = "displacement";
+    render_particles(p, rel, view, fmt::format("{}/displacement_{}.{}", figures_dir, name, ext));
+    return 2;
+}
+
 }  // namespace orodem

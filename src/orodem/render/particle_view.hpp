@@ -44,4 +44,14 @@ double positive_quantile(const std::vector<double>& v, double q);
 void render_particles(const ParticleStore& p, const std::vector<double>* scalar, const ViewOptions& o,
                       const std::string& path);
 
+/// The picture pair of one output, as `orodem run` writes it and `orodem
+/// render` writes it again: figures_dir/horizons_<name>.<ext> and, when rel
+/// is given (not for the first output, which has no previous one to move
+/// from), figures_dir/displacement_<name>.<ext>, labelled with the
+/// experiment and S. view gives the frame; its label and colouring are set
+/// here. Returns the number of pictures written.
+int render_picture_pair(const ParticleStore& p, const std::vector<double>* rel, ViewOptions view,
+                        const std::string& experiment, double S, const std::string& figures_dir,
+                        const std::string& name, const std::string& ext = "png");
+
 }  // namespace orodem

@@ -506,4 +506,22 @@ ReposeResult run_repose(const Config& c, const std::string& kind, double mu, con
     return res;
 }
 
+void check_calibration_size(const Config& c) {
+    const CalibrateConfig& k = c.calibrate;
+    const std::string& e = c.run.experiment;
+    const double length = e == "biaxial" ? k.width : e == "basal-friction" ? k.block_length : k.column_width;
+    const double height = e == "biaxial" ? k.height : e == "basal-friction" ? k.block_height : k.column_height;
+    for (const std::string& kind : k.kinds) calibration_sample(c, kind, length, height);
+}
+
+PackingConfig calibration_sample(const Config& c, const std::string& kind, double length, double height) {
+    PackingConfig pc = c.packing;
+    pc.kind = kind;
+    pc.length = length;
+    pc.h0 = height;
+    check_disc_budget(c, pc, "the calibration sample",
+                      "the [calibrate] sizes (width/height, block_length/block_height, column_width/column_height)");
+    return pc;
+}
+
 }  // namespace orodem

@@ -180,4 +180,11 @@ ReposeResult run_repose(const Config& c, const std::string& kind, double mu, con
 ParticleStore settled_block(const Config& c, const std::string& kind, double mu, double length, double height,
                             const CalibrationLog& log);
 
+/// Refuses (ConfigError, before anything is generated) a calibration whose
+/// samples are too large to run (check_disc_budget, setup/scenario.hpp).
+void check_calibration_size(const Config& c);
+/// The packing of one calibration sample: c's packing with this kind, length
+/// and height [m], refused (ConfigError) when it is too large to run.
+PackingConfig calibration_sample(const Config& c, const std::string& kind, double length, double height);
+
 }  // namespace orodem

@@ -1,0 +1,58 @@
+// orodem measure RUN_DIR: the wedge measures of each saved snapshot of a wedge
+// run taken again from the snapshot alone, as CSV on standard output: the
+// columns of series.csv that a snapshot determines (run/series_columns.hpp),
+// in the same formats, so they can be compared with the run's own rows.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "orodem/analysis/wedge_profile.hpp"
+#include "orodem/core/error.hpp"
+#include "orodem/io/config.hpp"
+#include "orodem/io/vtu_writer.hpp"
+#include "orodem/run/run_dir.hpp"
+#include "orodem/run/series_columns.hpp"
+#include "orodem/setup/wedge.hpp"
+
+#include "commands.hpp"
+
+namespace fs = std::filesystem;
+namespace orodem {
+
+int cmd_measure(const std::string& run_dir) {
+    require_run_dir(run_dir);
+    const fs::path dir(run_dir);
+    const Config c = load_config((dir / "config.toml").string());
+    const std::string& e = c.run.experiment;
+    if (!is_wedge(c))
+        throw ConfigError(fmt::format("'{}' is a {} run, which has no wedge to measure; measure takes a run of "
+                                      "exp1, exp2, exp3 or critical-wedge",
+                                      run_dir, e));
+    const std::vector<Snapshot> snaps = read_pvd((dir / "run.pvd").string());
+    if (snaps.front().S != 0.0)
+        throw IoError(fmt::format("'{}': the first snapshot is at S = {:g}; measure needs the one at S = 0, where "
+                                  "the undeformed surface y_mean is taken as the run took it",
+                                  (dir / "run.pvd").string(), snaps.front().S));
+    ProfileParams pp = wedge_profile_params(c);
+    const double h0 = c.packing.h0;
+    fmt::print("{}\n", series_header(true));
+    for (std::size_t k = 0; k < snaps.size(); ++k) {
+        const std::string vtu = (dir / snaps[k].file).string();
+        const VtuData d = read_vtu(vtu);
+        const auto& radius = d.require("radius", vtu);
+        ParticleStore p;
+        for (std::size_t i = 0; i < d.x.size(); ++i) p.add(d.x[i], radius[i], 1.0);
+        if (p.size() == 0) throw IoError(fmt::format("'{}': snapshot holds no discs", vtu));
+        if (k == 0) pp.y_mean = undeformed_surface(p, pp);
+        SeriesRow r;
+        r.S = snaps[k].S;
+        r.h0 = h0;
+        r.m = measure_wedge(p, pp, snaps[k].S * h0);
+        fmt::print("{}\n", series_line(r, static_cast<std::size_t>(-1), true));
+    }
+    return 0;
+}
+
+}  // namespace orodem

@@ -1,0 +1,274 @@
+#include "orodem/run/runner.hpp"
+
+#include <omp.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "orodem/core/error.hpp"
+#include "orodem/io/checkpoint.hpp"
+#include "orodem/io/files.hpp"
+#include "orodem/io/packing_file.hpp"
+#include "orodem/physics/stability.hpp"
+#include "orodem/run/run_dir.hpp"
+#include "orodem/run/run_log.hpp"
+#include "orodem/run/wedge_run.hpp"
+#include "orodem/setup/packing.hpp"
+#include "orodem/setup/scenario.hpp"
+#include "orodem/setup/wedge.hpp"
+
+namespace fs = std::filesystem;
+
+namespace orodem {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// The settled layer of c: from the cache when present, else settled now
+/// (series rows of the settling go to `series` when given) and cached.
+ParticleStore prepare_layer(const Config& c, const std::string& dir, RunLog& log, LineFile* series,
+                            RunObserver& obs) {
+    const std::string cache = packing_cache_path(c);
+    std::string why;
+    if (auto cached = load_packing(cache, packing_key(c), c.material.density, &why)) {
+        log.line(fmt::format("packing reused from {} ({} discs)", cache, cached->size()));
+        obs.note(fmt::format("packing reused from {}", cache));
+        return std::move(*cached);
+    }
+    // Settling is not checkpointed (it ends in the packing cache, and takes
+    // minutes at most): a stop request ends it with exit 128 + signal and a
+    // rerun (for a wedge: --resume) settles again. Stop requests are watched
+    // before the log says "settling".
+    StopWatch watch(obs);
+    log.line(fmt::format("settling a new packing ({})", why));
+    Simulation sim = make_settle_simulation(c);
+    sim.initialize();
+    log.line(fmt::format("generated {} discs ({}); settling", sim.particles.size(), c.packing.kind));
+    const auto t0 = std::chrono::steady_clock::now();
+    const SettleProgress done = settle(sim, c.packing, c.run.output_interval, [&](const SettleProgress& s) {
+        if (const int sig = obs.stop_requested()) {
+            const std::string msg = fmt::format(
+                "by {} while settling the packing (step {}, {:.0f} s); settling is not checkpointed, so it "
+                "starts again when the run is started again{}",
+                sig == SIGINT ? "SIGINT" : "SIGTERM", s.step, seconds_since(t0),
+                is_wedge(c) ? fmt::format(": orodem run {}/config.toml --out {} --resume", dir, dir)
+                            : std::string(" (with a new --out)"));
+            EventRecord e;
+            e.kind = RunEvent::interrupted;
+            e.step = s.step;
+            e.text = "interrupted " + msg;
+            log.event(e);
+            throw InterruptedError(msg, sig);
+        }
+        if (series)
+            series->line(fmt::format("{},{:.9g},{:.9g},{:.6g},{},{:.6g}", s.step, s.time, s.kinetic_energy,
+                                     s.ke_ratio, s.contacts, sim.max_overlap_ratio()));
+        obs.settling(fmt::format("settling {} discs: t = {:.3f} s, step {}, E_kin/(M g h0) = {:.2e} (target {:.1e})",
+                                 sim.particles.size(), s.time, s.step, s.ke_ratio, c.packing.settle_ke_ratio));
+    });
+    obs.progress_done();
+    const double secs = seconds_since(t0);
+    log.line(fmt::format("settled after {} steps ({:.4g} s simulated, {:.1f} s wall, {:.3g} disc-steps/s); "
+                         "E_kin/(M g h0) = {:.3g}, max overlap/R = {:.4f}",
+                         done.step, done.time, secs,
+                         static_cast<double>(done.step) * static_cast<double>(sim.particles.size()) / secs,
+                         done.ke_ratio, sim.max_overlap_ratio()));
+    cut_layer(sim.particles, c.packing.h0);
+    save_packing(cache, sim.particles, packing_key(c));
+    log.line(fmt::format("cut to h0 = {:g} m: {} discs; cached in {}", c.packing.h0, sim.particles.size(), cache));
+    return std::move(sim.particles);
+}
+
+/// A WedgeRun, and when an I/O error (a full disk, a failed write) stops it,
+/// an end line in log.txt first (if the log can still be written), so that
+/// orodem status says how the piece ended and adds up its wall time.
+int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, RunLog& log, RunObserver& obs,
+              const RunLoopState* resumed) {
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+        WedgeRun run(c, w, dir, log, obs, resumed);
+        return run.run();
+    } catch (const IoError& e) {
+        try {
+            EventRecord ev;
+            ev.kind = RunEvent::io_error;
+            ev.step = w.sim.step_count;
+            ev.S = c.wedge.v * w.sim.time / c.packing.h0;
+            ev.wall_s = seconds_since(t0);
+            ev.text = fmt::format("stopped by an I/O error at step {} (S = {:.4f}) after {:.1f} s wall: {}",
+                                  ev.step, ev.S, ev.wall_s, e.what());
+            log.event(ev);
+        } catch (const IoError&) {
+            // The log cannot be written either (the disk is full): orodem status
+            // then says "no end line"; the exit status (4) and stderr say why.
+        }
+        throw;
+    }
+}
+
+/// A wedge run from the beginning in dir (config.toml and log.txt exist).
+int start_wedge(const Config& c, const std::string& dir, RunLog& log, RunObserver& obs) {
+    const ParticleStore layer = prepare_layer(c, dir, log, nullptr, obs);
+    WedgeSetup w = make_wedge(c, layer);
+    const int rc = run_wedge(c, w, dir, log, obs, nullptr);
+    if (rc != 0) return rc;
+    obs.note(fmt::format("outputs in {}/ (config.toml, log.txt, series.csv)", dir));
+    return 0;
+}
+
+}  // namespace
+
+void check_runnable(const Config& c) {
+    check_model_size(c);
+    timestep_for(c);
+    if (is_wedge(c)) check_wedge_base(c);
+}
+
+std::string short_plate_warning(const Config& c) {
+    const PlateEstimate pe = plate_estimate(c);
+    if (c.wedge.pro_margin >= pe.pro_margin_min) return "";
+    return fmt::format("wedge.pro_margin = {:g} h0 is shorter than the {:.1f} h0 the deformation front may need by "
+                       "S = {:g} (critical taper {:.2f} deg for mu_bp = {:g}; docs/experiments.md \"Plate length\"); "
+                       "raise wedge.pro_margin so that the trailing wall does not push the wedge",
+                       c.wedge.pro_margin, pe.pro_margin_min, c.wedge.s_max, pe.alpha_deg, c.wedge.mu_bp);
+}
+
+int start_run_in(const Config& c, const std::string& dir, RunObserver& obs) {
+    const TimestepInfo t = timestep_for(c);
+    write_file_atomic(dir + "/config.toml", to_toml(c));
+    RunLog log(dir);
+    EventRecord start;
+    start.kind = RunEvent::start;
+    start.dt = t.dt;
+    start.text = fmt::format("orodem {} run of {} ({}) with {} threads", ORODEM_VERSION, c.path, c.run.experiment,
+                             omp_get_max_threads());
+    log.event(start);
+    log.line(fmt::format("dt = {:.6g} s, stability limit {:.6g} s (margin {:.2f}x), t_c = {:.1f} steps",
+                         t.dt, t.dt_crit, t.margin(), t.t_collision / t.dt));
+    // RELIABILITY-CHECKLIST 3: stable but coarse steps are allowed with a warning.
+    std::vector<std::string> coarse;
+    if (t.t_collision / t.dt < 20.0)
+        coarse.push_back(fmt::format("a collision (t_c = {:.4g} s) spans only {:.1f} steps of dt = {:.4g} s, fewer than "
+                                     "20; lower numerics.safety or numerics.dt for accurate contacts",
+                                     t.t_collision, t.t_collision / t.dt, t.dt));
+    if (const std::string w = is_wedge(c) ? short_plate_warning(c) : std::string(); !w.empty()) coarse.push_back(w);
+    if (is_wedge(c) && c.wedge.v * t.dt > 0.1 * c.packing.r_min)
+        coarse.push_back(fmt::format("the belt moves {:.4g} m per step, more than 0.1 r_min = {:.4g} m; lower "
+                                     "wedge.v or numerics.dt",
+                                     c.wedge.v * t.dt, 0.1 * c.packing.r_min));
+    for (const auto& w : coarse) {
+        log.line("warning: " + w);
+        obs.warning(w, false);
+    }
+    if (!is_wedge(c)) {
+        LineFile series(dir + "/series.csv");
+        // Header always; rows only when the layer is settled now (not cached).
+        series.line("step,time,kinetic_energy,ke_ratio,contacts,max_overlap_ratio");
+        const ParticleStore layer = prepare_layer(c, dir, log, &series, obs);
+        save_packing(dir + "/packing.bin", layer, packing_key(c));
+        const double surface = mean_surface_height(layer, 0.0, c.packing.length, 2.0 * c.packing.r_max);
+        log.line(fmt::format("layer: {} discs, mean surface height {:.4g} m (h0 = {:g} m)", layer.size(), surface,
+                             c.packing.h0));
+        obs.note(fmt::format("layer of {} discs ready, mean surface {:.3g} m", layer.size(), surface));
+        obs.note(fmt::format("outputs in {}/ (config.toml, log.txt, series.csv, packing.bin)", dir));
+        return 0;
+    }
+    return start_wedge(c, dir, log, obs);
+}
+
+int resume_run(const Config& c, const std::string& dir, RunObserver& obs) {
+    if (dir.empty())
+        throw ConfigError("--resume needs --out DIR: the run directory to continue (it holds config.toml and checkpoint/)");
+    if (!is_wedge(c))
+        throw ConfigError(fmt::format("--resume: run.experiment = \"{}\" writes no checkpoints; only the wedge "
+                                      "experiments can be resumed", c.run.experiment));
+    if (!fs::exists(dir + "/config.toml"))
+        throw ConfigError(fmt::format("--resume --out {}: no config.toml there; give the directory of the run to continue", dir));
+    const Config saved = load_config(dir + "/config.toml");
+    if (config_hash(saved) != config_hash(c))
+        throw ConfigError(fmt::format("--resume --out {}: {} differs from the run's config ({}); resume with "
+                                      "orodem run {}/config.toml --out {} --resume",
+                                      dir, c.path, first_config_difference(saved, c), dir, dir));
+    if (list_checkpoints(dir + "/checkpoint").empty()) {
+        // Outputs but no checkpoint (checkpoint/ deleted or emptied): they
+        // cannot be continued, and starting again would rewrite them.
+        if (const std::size_t rows = series_rows(dir + "/series.csv"); rows > 0)
+            throw ConfigError(fmt::format(
+                "--resume {}: no checkpoint in {}/checkpoint/, but series.csv has {} output rows; a resume cannot "
+                "continue them and would overwrite them, so nothing was changed. Keep the run as it is, or start "
+                "it again in a new directory: orodem run {}/config.toml --out NEW_DIR",
+                dir, dir, rows, dir));
+        // Interrupted before its first checkpoint (while settling): nothing
+        // to continue, so the run starts from the beginning in the same place.
+        for (const char* partial : {"series.csv", "run.pvd", "snapshots", "figures", "checkpoint"})
+            remove_path((fs::path(dir) / partial).string());
+        RunLog log(dir);
+        EventRecord e;
+        e.kind = RunEvent::resume;
+        e.text = fmt::format("resumed by orodem {}: no checkpoint yet, so the run starts from the beginning",
+                             ORODEM_VERSION);
+        log.event(e);
+        obs.note(fmt::format("{} has no checkpoint yet: starting the run from the beginning", dir));
+        return start_wedge(c, dir, log, obs);
+    }
+    WedgeSetup w = make_wedge(c, ParticleStore{});
+    RunLoopState st;
+    std::vector<std::string> notes;
+    std::string path;
+    try {
+        path = restore_newest_checkpoint(dir + "/checkpoint", accepted_config_hashes(c), w.sim, st, &notes);
+    } catch (const CheckpointError& e) {
+        // Every checkpoint is damaged: nothing to continue from; nothing changed.
+        throw ConfigError(fmt::format("--resume {}: {}; nothing was changed. Keep the run as it is, or start it "
+                                      "again in a new directory: orodem run {}/config.toml --out NEW_DIR",
+                                      dir, e.what(), dir));
+    }
+    for (const auto& n : notes) obs.warning(n, false);
+    // log.txt beyond the checkpoint: the rows and warnings that the resumed
+    // run writes again, and the history of the pieces since: the previous
+    // piece's end line (a signal, a time limit) with its phase times, and the
+    // start line of a piece killed before its first checkpoint. Those are
+    // kept, so that the log and orodem status show every piece and how it
+    // ended and ran (events.csv keeps them as it is).
+    std::vector<std::string> history;
+    {
+        const std::string log_text = read_file(dir + "/log.txt");
+        std::istringstream tail(log_text.size() > st.log_bytes ? log_text.substr(st.log_bytes) : std::string());
+        for (std::string line; std::getline(tail, line);)
+            if (starts_or_ends_a_piece(line) || line.rfind("step phases (this process)", 0) == 0)
+                history.push_back(line);
+    }
+    // events.csv is made from the whole log.txt (a run started before it
+    // existed) before the log is cut back.
+    RunLog log(dir);
+    truncate_file(dir + "/series.csv", st.series_bytes);
+    truncate_file(dir + "/log.txt", st.log_bytes);
+    for (const auto& line : history) log.line(line);
+    for (const auto& n : notes) log.line("warning: " + n);
+    EventRecord e;
+    e.kind = RunEvent::resume;
+    e.step = w.sim.step_count;
+    e.S = c.wedge.v * w.sim.time / c.packing.h0;
+    e.text = fmt::format("resumed by orodem {} from {} at step {} (S = {:.4f}) with {} threads", ORODEM_VERSION, path,
+                         w.sim.step_count, e.S, omp_get_max_threads());
+    log.event(e);
+    obs.note(fmt::format("resuming {} from step {} ({})", dir, w.sim.step_count, path));
+    const int rc = run_wedge(c, w, dir, log, obs, &st);
+    if (rc == 0) obs.note(fmt::format("outputs in {}/ (config.toml, log.txt, series.csv)", dir));
+    return rc;
+}
+
+void ensure_packing_cached(const Config& c, const std::string& dir, RunObserver& obs) {
+    RunLog log(dir);
+    prepare_layer(c, dir, log, nullptr, obs);
+}
+
+}  // namespace orodem

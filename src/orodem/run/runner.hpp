@@ -1,0 +1,34 @@
+// Starting and continuing runs in a run directory (SPEC "Run directory"):
+// what `orodem run`, `orodem run --resume`, `orodem resume` and the members of
+// `orodem sweep` do once the config is loaded and the directory chosen. A new
+// run writes config.toml, log.txt and events.csv, settles its layer (or takes
+// it from the packing cache) and, for a wedge experiment, hands over to
+// WedgeRun; a resume checks the config against the run's, restores the newest
+// usable checkpoint, cuts series.csv and log.txt back to it and continues.
+#pragma once
+
+#include <string>
+
+#include "orodem/io/config.hpp"
+#include "orodem/run/observer.hpp"
+
+namespace orodem {
+
+/// Throws ConfigError unless c can run: a model size within the limits, a
+/// stable timestep, and the base law's checks (check_wedge_base).
+void check_runnable(const Config& c);
+/// A one-line warning when the wedge's incoming plate is shorter than
+/// plate_estimate says the deformation front needs; "" otherwise.
+std::string short_plate_warning(const Config& c);
+/// Runs c from the beginning in dir (which exists: empty, or holding only its
+/// config.toml). Returns the exit status (0; 128 + signal or
+/// ExitCode::time_limit when a wedge run stopped early with a checkpoint).
+int start_run_in(const Config& c, const std::string& dir, RunObserver& obs);
+/// Continues the wedge run in dir from its newest usable checkpoint (from the
+/// beginning when it was stopped before its first); c must be its config.
+int resume_run(const Config& c, const std::string& dir, RunObserver& obs);
+/// Settles c's layer into its packing cache unless it is there already; the
+/// log lines go to dir/log.txt (and dir/events.csv).
+void ensure_packing_cached(const Config& c, const std::string& dir, RunObserver& obs);
+
+}  // namespace orodem

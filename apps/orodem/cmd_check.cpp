@@ -80,9 +80,8 @@ int check_calibration(const Config& c) {
 int cmd_check(const CommonArgs& a) {
     const Config c = load(a);
     if (is_calibration(c)) return check_calibration(c);
-    check_model_size(c);
-    const TimestepInfo t = timestep_for(c);
-    if (is_wedge(c)) check_wedge_base(c);
+    const RunNumbers numbers = check_runnable(c);
+    const TimestepInfo& t = numbers.timestep;
     // Up to a million discs are generated and counted (well under a second);
     // beyond, the area estimate (within 3%) answers at once.
     constexpr double kCountUpTo = 1.0e6;
@@ -101,19 +100,19 @@ int cmd_check(const CommonArgs& a) {
         const double steps = c.wedge.s_max * c.packing.h0 / (c.wedge.v * t.dt);
         if (c.wedge.base_law == "traction")
             fmt::print("belt speed v'          = {:g} m/s (eq. 6 traction base; limit {:.4g} m/s, margin {:.1f}x)\n",
-                       c.wedge.v, belt_speed_limit(c), belt_speed_limit(c) / c.wedge.v);
+                       c.wedge.v, numbers.belt_speed_limit, numbers.belt_speed_limit / c.wedge.v);
         else
             fmt::print("belt speed v'          = {:g} m/s (Coulomb base, mu_bp = {:g})\n", c.wedge.v, c.wedge.mu_bp);
         fmt::print("inertial number I      = {:.3g} (v'/h0 (r_min + r_max) sqrt(rho / (rho g h0)); quasi-static "
                    "below 1e-3)\n",
-                   inertial_number(c));
-        const PlateEstimate pe = plate_estimate(c);
+                   numbers.inertial_number);
+        const PlateEstimate& pe = numbers.plate;
         fmt::print("plate beyond s_max     = {:g} h0 (wedge.pro_margin); the deformation front reaches about {:.1f} h0 "
                    "from the S point by S = {:g} (critical taper {:.2f} deg for phi = {:.1f} deg, phi_b = {:.1f} deg), "
                    "so at least {:.1f} h0 is needed\n",
                    c.wedge.pro_margin, pe.front_h0, c.wedge.s_max, pe.alpha_deg, pe.phi_deg, pe.phi_b_deg,
                    pe.pro_margin_min);
-        if (const std::string w = short_plate_warning(c); !w.empty()) fmt::print(stderr, "orodem: warning: {}\n", w);
+        if (const std::string w = short_plate_warning(c, pe); !w.empty()) fmt::print(stderr, "orodem: warning: {}\n", w);
         // Rates of wedge runs on the 2-core development machine per awake
         // disc (docs/benchmarks.md); with sleeping zones about two thirds of
         // the discs are awake on average over S = 0-8 (the intermediate runs).

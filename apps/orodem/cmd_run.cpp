@@ -18,13 +18,13 @@ int cmd_run(const CommonArgs& a, const std::string& out_arg, bool resume) {
     if (is_calibration(c))
         throw ConfigError(fmt::format("{}: run.experiment = \"{}\" is a calibration experiment: run it with orodem "
                                       "calibrate {}", c.path, c.run.experiment, c.path));
-    check_runnable(c);
+    const RunNumbers n = check_runnable(c);
     set_threads(c);
     TerminalObserver terminal;
-    if (resume) return resume_run(c, out_arg, terminal);
+    if (resume) return resume_run(c, n, out_arg, terminal);
     const std::string dir = choose_run_dir(out_arg, c.path);
     make_dirs(dir);
-    return start_run_in(c, dir, terminal);
+    return start_run_in(c, n, dir, terminal);
 }
 
 }  // namespace orodem

@@ -105,7 +105,7 @@ int run_member(const Config& c, const std::string& dir, const std::string& label
     if (st == MemberState::resume) {
         fmt::print("sweep: {}: continuing {}\n", label, dir);
         TerminalObserver terminal;
-        return resume_run(c, dir, terminal);
+        return resume_run(c, derive_run_numbers(c), dir, terminal);
     }
     if (!is_wedge(c)) {
         // What an interrupted settling left, but the config and the output of a parallel sweep's child.
@@ -116,7 +116,7 @@ int run_member(const Config& c, const std::string& dir, const std::string& label
     }
     fmt::print("sweep: {} -> {}\n", label, dir);
     TerminalObserver terminal;
-    return start_run_in(c, dir, terminal);
+    return start_run_in(c, derive_run_numbers(c), dir, terminal);
 }
 
 /// A member's config, from its config.toml (threads >= 0 overrides run.threads).

@@ -214,6 +214,11 @@ Config load_config(const std::string& path, const std::vector<Override>& overrid
 Config parse_config(const std::string& text, const std::string& name,
                     const std::vector<Override>& overrides = {});
 
+/// The first line of every resolved config.toml (to_toml): a file that starts
+/// with it is read as a run directory's resolved config.
+inline constexpr const char* kResolvedHeader =
+    "# orodem resolved config: every key with its final value (defaults written out)\n";
+
 /// The resolved config as TOML text.
 std::string to_toml(const Config& c);
 

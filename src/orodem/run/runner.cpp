@@ -115,9 +115,9 @@ int run_wedge(const Config& c, WedgeSetup& w, const std::string& dir, RunLog& lo
 }
 
 /// A wedge run from the beginning in dir (config.toml and log.txt exist).
-int start_wedge(const Config& c, const std::string& dir, RunLog& log, RunObserver& obs) {
+int start_wedge(const Config& c, const RunNumbers& n, const std::string& dir, RunLog& log, RunObserver& obs) {
     const ParticleStore layer = prepare_layer(c, dir, log, nullptr, obs);
-    WedgeSetup w = make_wedge(c, layer);
+    WedgeSetup w = make_wedge(c, layer, n);
     const int rc = run_wedge(c, w, dir, log, obs, nullptr);
     if (rc != 0) return rc;
     obs.note(fmt::format("outputs in {}/ (config.toml, log.txt, series.csv)", dir));
@@ -126,14 +126,12 @@ int start_wedge(const Config& c, const std::string& dir, RunLog& log, RunObserve
 
 }  // namespace
 
-void check_runnable(const Config& c) {
+RunNumbers check_runnable(const Config& c) {
     check_model_size(c);
-    timestep_for(c);
-    if (is_wedge(c)) check_wedge_base(c);
+    return derive_run_numbers(c);
 }
 
-std::string short_plate_warning(const Config& c) {
-    const PlateEstimate pe = plate_estimate(c);
+std::string short_plate_warning(const Config& c, const PlateEstimate& pe) {
     if (c.wedge.pro_margin >= pe.pro_margin_min) return "";
     return fmt::format("wedge.pro_margin = {:g} h0 is shorter than the {:.1f} h0 the deformation front may need by "
                        "S = {:g} (critical taper {:.2f} deg for mu_bp = {:g}; docs/experiments.md \"Plate length\"); "
@@ -141,8 +139,8 @@ std::string short_plate_warning(const Config& c) {
                        c.wedge.pro_margin, pe.pro_margin_min, c.wedge.s_max, pe.alpha_deg, c.wedge.mu_bp);
 }
 
-int start_run_in(const Config& c, const std::string& dir, RunObserver& obs) {
-    const TimestepInfo t = timestep_for(c);
+int start_run_in(const Config& c, const RunNumbers& n, const std::string& dir, RunObserver& obs) {
+    const TimestepInfo& t = n.timestep;
     write_file_atomic(dir + "/config.toml", to_toml(c));
     RunLog log(dir);
     EventRecord start;
@@ -159,7 +157,7 @@ int start_run_in(const Config& c, const std::string& dir, RunObserver& obs) {
         coarse.push_back(fmt::format("a collision (t_c = {:.4g} s) spans only {:.1f} steps of dt = {:.4g} s, fewer than "
                                      "20; lower numerics.safety or numerics.dt for accurate contacts",
                                      t.t_collision, t.t_collision / t.dt, t.dt));
-    if (const std::string w = is_wedge(c) ? short_plate_warning(c) : std::string(); !w.empty()) coarse.push_back(w);
+    if (const std::string w = is_wedge(c) ? short_plate_warning(c, n.plate) : std::string(); !w.empty()) coarse.push_back(w);
     if (is_wedge(c) && c.wedge.v * t.dt > 0.1 * c.packing.r_min)
         coarse.push_back(fmt::format("the belt moves {:.4g} m per step, more than 0.1 r_min = {:.4g} m; lower "
                                      "wedge.v or numerics.dt",
@@ -181,10 +179,10 @@ int start_run_in(const Config& c, const std::string& dir, RunObserver& obs) {
         obs.note(fmt::format("outputs in {}/ (config.toml, log.txt, series.csv, packing.bin)", dir));
         return 0;
     }
-    return start_wedge(c, dir, log, obs);
+    return start_wedge(c, n, dir, log, obs);
 }
 
-int resume_run(const Config& c, const std::string& dir, RunObserver& obs) {
+int resume_run(const Config& c, const RunNumbers& n, const std::string& dir, RunObserver& obs) {
     if (dir.empty())
         throw ConfigError("--resume needs --out DIR: the run directory to continue (it holds config.toml and checkpoint/)");
     if (!is_wedge(c))
@@ -217,9 +215,9 @@ int resume_run(const Config& c, const std::string& dir, RunObserver& obs) {
                              ORODEM_VERSION);
         log.event(e);
         obs.note(fmt::format("{} has no checkpoint yet: starting the run from the beginning", dir));
-        return start_wedge(c, dir, log, obs);
+        return start_wedge(c, n, dir, log, obs);
     }
-    WedgeSetup w = make_wedge(c, ParticleStore{});
+    WedgeSetup w = make_wedge(c, ParticleStore{}, n);
     RunLoopState st;
     std::vector<std::string> notes;
     std::string path;

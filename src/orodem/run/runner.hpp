@@ -11,22 +11,25 @@
 
 #include "orodem/io/config.hpp"
 #include "orodem/run/observer.hpp"
+#include "orodem/setup/wedge.hpp"
 
 namespace orodem {
 
 /// Throws ConfigError unless c can run: a model size within the limits, a
-/// stable timestep, and the base law's checks (check_wedge_base).
-void check_runnable(const Config& c);
-/// A one-line warning when the wedge's incoming plate is shorter than
-/// plate_estimate says the deformation front needs; "" otherwise.
-std::string short_plate_warning(const Config& c);
+/// stable timestep, and the base law's checks (check_wedge_base). Returns the
+/// numbers derived on the way, for the run to use.
+RunNumbers check_runnable(const Config& c);
+/// A one-line warning when the wedge's incoming plate is shorter than the
+/// estimate (plate_estimate) says the deformation front needs; "" otherwise.
+std::string short_plate_warning(const Config& c, const PlateEstimate& pe);
 /// Runs c from the beginning in dir (which exists: empty, or holding only its
-/// config.toml). Returns the exit status (0; 128 + signal or
-/// ExitCode::time_limit when a wedge run stopped early with a checkpoint).
-int start_run_in(const Config& c, const std::string& dir, RunObserver& obs);
+/// config.toml); n from check_runnable(c). Returns the exit status (0;
+/// 128 + signal or ExitCode::time_limit when a wedge run stopped early with a
+/// checkpoint).
+int start_run_in(const Config& c, const RunNumbers& n, const std::string& dir, RunObserver& obs);
 /// Continues the wedge run in dir from its newest usable checkpoint (from the
 /// beginning when it was stopped before its first); c must be its config.
-int resume_run(const Config& c, const std::string& dir, RunObserver& obs);
+int resume_run(const Config& c, const RunNumbers& n, const std::string& dir, RunObserver& obs);
 /// Settles c's layer into its packing cache unless it is there already; the
 /// log lines go to dir/log.txt (and dir/events.csv).
 void ensure_packing_cached(const Config& c, const std::string& dir, RunObserver& obs);

@@ -15,41 +15,58 @@
 
 namespace orodem {
 
-double belt_speed_limit(const Config& c) {
-    const TimestepInfo t = timestep_for(c);
-    return lightest_mass(c) * c.numerics.gravity / (c.material.k_n * t.dt);
+double belt_speed_limit(const Config& c, double dt) {
+    return lightest_mass(c) * c.numerics.gravity / (c.material.k_n * dt);
 }
 
-void check_belt_speed(const Config& c) {
+double belt_speed_limit(const Config& c) { return belt_speed_limit(c, timestep_for(c).dt); }
+
+void check_belt_speed(const Config& c, double dt) {
     const WedgeConfig& w = c.wedge;
-    const TimestepInfo t = timestep_for(c);
-    const double v_limit = belt_speed_limit(c);
+    const double v_limit = belt_speed_limit(c, dt);
     if (!(w.v < v_limit))
         throw ConfigError(fmt::format(
             "{}: key 'wedge.v' = {:g}: must satisfy eq. 6, v' < m g / (k_n dt) = {:g} m/s "
             "(m = {:g} kg lightest disc, g = {:g}, k_n = {:g}, dt = {:g} s); lower wedge.v or material.k_n",
-            c.path, w.v, v_limit, lightest_mass(c), c.numerics.gravity, c.material.k_n, t.dt));
+            c.path, w.v, v_limit, lightest_mass(c), c.numerics.gravity, c.material.k_n, dt));
 }
 
-void check_base_dashpot(const Config& c) {
+void check_belt_speed(const Config& c) { check_belt_speed(c, timestep_for(c).dt); }
+
+void check_base_dashpot(const Config& c) { check_base_dashpot(c, timestep_for(c).dt); }
+
+void check_base_dashpot(const Config& c, double dt) {
     // The Coulomb base's critically damped dashpot on the lightest disc:
     // explicit and stable for γ_s dt / m < 2, i.e. 2 ζ sqrt(k_s/m) dt < 2;
     // kept below 1 for a margin (the automatic dt gives about 0.12).
     const bool coulomb = is_calibration(c) ? c.calibrate.base_law == "coulomb" : c.wedge.base_law == "coulomb";
     if (!coulomb) return;
-    const TimestepInfo t = timestep_for(c);
     const double k_s = c.material.k_n * c.material.k_s_over_k_n;
-    const double rate = 2.0 * kBaseDampingRatio * std::sqrt(k_s / lightest_mass(c)) * t.dt;
+    const double rate = 2.0 * kBaseDampingRatio * std::sqrt(k_s / lightest_mass(c)) * dt;
     if (!(rate < 1.0))
         throw ConfigError(fmt::format("{}: numerics.dt = {:g} s is too long for the Coulomb base's dashpot "
                                       "(2 sqrt(k_s/m) dt = {:.3g} for the lightest disc, must be below 1); lower "
                                       "numerics.dt or numerics.safety",
-                                      c.path, t.dt, rate));
+                                      c.path, dt, rate));
 }
 
-void check_wedge_base(const Config& c) {
-    if (c.wedge.base_law == "traction") check_belt_speed(c);
-    check_base_dashpot(c);
+void check_wedge_base(const Config& c, double dt) {
+    if (c.wedge.base_law == "traction") check_belt_speed(c, dt);
+    check_base_dashpot(c, dt);
+}
+
+void check_wedge_base(const Config& c) { check_wedge_base(c, timestep_for(c).dt); }
+
+RunNumbers derive_run_numbers(const Config& c) {
+    RunNumbers n;
+    n.timestep = timestep_for(c);
+    n.belt_speed_limit = belt_speed_limit(c, n.timestep.dt);
+    if (is_wedge(c)) {
+        check_wedge_base(c, n.timestep.dt);
+        n.inertial_number = inertial_number(c);
+        n.plate = plate_estimate(c);
+    }
+    return n;
 }
 
 double inertial_number(const Config& c) {
@@ -112,11 +129,14 @@ double undeformed_surface(const ParticleStore& p, const ProfileParams& pp) {
 }
 
 WedgeSetup make_wedge(const Config& c, const ParticleStore& layer) {
+    return make_wedge(c, layer, derive_run_numbers(c));
+}
+
+WedgeSetup make_wedge(const Config& c, const ParticleStore& layer, const RunNumbers& n) {
     const WedgeConfig& w = c.wedge;
     const double h0 = c.packing.h0;
     const bool backstop = experiment_of(c).backstop;
-    const TimestepInfo t = timestep_for(c);
-    check_wedge_base(c);
+    const TimestepInfo& t = n.timestep;
 
     WedgeSetup ws;
     ws.pro_length = (w.s_max + w.pro_margin) * h0;

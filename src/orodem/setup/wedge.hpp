@@ -21,6 +21,7 @@
 #include "orodem/analysis/wedge_profile.hpp"
 #include "orodem/engine/simulation.hpp"
 #include "orodem/io/config.hpp"
+#include "orodem/physics/stability.hpp"
 
 namespace orodem {
 
@@ -43,9 +44,14 @@ struct WedgeSetup {
     FixedRetroside* fixed_retro = nullptr;   // exp1, exp2 only
 };
 
-/// Builds the experiment from the settled layer (discs in [0, L], cut to h0).
-/// Throws ConfigError if eq. 6 (v' < m g / (k_n dt)) is violated under the
-/// traction law, or the Coulomb base's dashpot would be unstable.
+struct RunNumbers;
+
+/// Builds the experiment from the settled layer (discs in [0, L], cut to h0)
+/// with the numbers derived from c (derive_run_numbers, which throws
+/// ConfigError if eq. 6 (v' < m g / (k_n dt)) is violated under the traction
+/// law, or the Coulomb base's dashpot would be unstable).
+WedgeSetup make_wedge(const Config& c, const ParticleStore& layer, const RunNumbers& n);
+/// The same, deriving the numbers first.
 WedgeSetup make_wedge(const Config& c, const ParticleStore& layer);
 
 /// The measurement parameters of the experiment (SPEC §3) from the config
@@ -55,12 +61,16 @@ ProfileParams wedge_profile_params(const Config& c);
 /// from h0 inside its trailing end to h0 before the S point [m].
 double undeformed_surface(const ParticleStore& p, const ProfileParams& pp);
 
-/// Eq. 6 bound on the belt speed for the lightest disc: m_min g / (k_n dt) [m/s].
+/// Eq. 6 bound on the belt speed for the lightest disc: m_min g / (k_n dt) [m/s]
+/// (dt [s] the run's timestep; without it, timestep_for(c)).
+double belt_speed_limit(const Config& c, double dt);
 double belt_speed_limit(const Config& c);
 /// Throws ConfigError naming wedge.v and the numbers when v' >= belt_speed_limit.
+void check_belt_speed(const Config& c, double dt);
 void check_belt_speed(const Config& c);
 /// The checks of the config's base law: check_belt_speed for the traction
 /// law, check_base_dashpot for the Coulomb base.
+void check_wedge_base(const Config& c, double dt);
 void check_wedge_base(const Config& c);
 /// The inertial number of the convergence, I = γ̇ d sqrt(ρ/P) [-], with the
 /// bulk shear rate γ̇ = v'/h0, d = r_min + r_max and P = ρ g h0, the
@@ -89,8 +99,23 @@ PlateEstimate plate_estimate(const Config& c);
 /// "Calibration"), interpolated linearly in μ_i [deg]. Hexagonal packings
 /// use the discs' row.
 double bulk_friction_deg(const std::string& kind, double mu_i);
-/// Throws ConfigError when dt is too long for the Coulomb base's dashpot
+/// Throws ConfigError when dt [s] is too long for the Coulomb base's dashpot
 /// (wedge or calibrate base_law = "coulomb"; nothing for the traction law).
+void check_base_dashpot(const Config& c, double dt);
 void check_base_dashpot(const Config& c);
+
+/// The numbers a run derives from its config, computed once by
+/// derive_run_numbers and handed on (orodem check prints them; the run and
+/// make_wedge use them) instead of being derived again by each caller.
+struct RunNumbers {
+    TimestepInfo timestep;          // dt, its stability limit, the collision time
+    double belt_speed_limit = 0.0;  // eq. 6 bound m_min g / (k_n dt) [m/s] (the traction law's)
+    double inertial_number = 0.0;   // of the convergence [-] (wedge experiments)
+    PlateEstimate plate;            // the plate the deformation front needs (wedge experiments)
+};
+/// With the checks of a runnable config: ConfigError for a dt above the
+/// stability limit (timestep_for) and, for a wedge, a base law's bound
+/// (check_wedge_base).
+RunNumbers derive_run_numbers(const Config& c);
 
 }  // namespace orodem

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "orodem/core/error.hpp"
 #include "orodem/io/config.hpp"
 
 namespace orodem {
@@ -55,6 +56,14 @@ Config load(const CommonArgs& a) {
     for (const auto& s : a.sets) ov.push_back(parse_override(s));
     if (a.threads >= 0) ov.push_back({"run.threads", std::to_string(a.threads)});
     return load_config(a.config, ov);
+}
+
+Config load_for_run(const CommonArgs& a) {
+    Config c = load(a);
+    if (is_calibration(c))
+        throw ConfigError(fmt::format("{}: run.experiment = \"{}\" is a calibration experiment: run it with orodem "
+                                      "calibrate {}", c.path, c.run.experiment, c.path));
+    return c;
 }
 
 void set_threads(const Config& c) {

@@ -23,6 +23,8 @@ struct CommonArgs {
 
 /// The config of a, its --set and --threads applied (load_config: ConfigError if bad).
 Config load(const CommonArgs& a);
+/// load, refusing a calibration config (ConfigError: orodem calibrate runs those).
+Config load_for_run(const CommonArgs& a);
 /// Applies run.threads (0: all cores).
 void set_threads(const Config& c);
 /// "42 s", "17 min" or "3.5 h".

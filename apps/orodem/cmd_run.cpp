@@ -14,10 +14,7 @@
 namespace orodem {
 
 int cmd_run(const CommonArgs& a, const std::string& out_arg, bool resume) {
-    const Config c = load(a);
-    if (is_calibration(c))
-        throw ConfigError(fmt::format("{}: run.experiment = \"{}\" is a calibration experiment: run it with orodem "
-                                      "calibrate {}", c.path, c.run.experiment, c.path));
+    const Config c = load_for_run(a);
     const RunNumbers n = check_runnable(c);
     set_threads(c);
     TerminalObserver terminal;

@@ -374,10 +374,15 @@ int cmd_resume(const std::string& dir, int threads, int jobs) {
         fmt::print("continuing the sweep in {} ({} = {} values)\n", dir, m.key, m.values.size());
         return run_members(dir, m, threads, jobs);
     }
+    // One run, continued with its own config.toml.
     CommonArgs a;
     a.config = dir + "/config.toml";
     a.threads = threads;
-    return cmd_run(a, dir, true);
+    const Config c = load_for_run(a);
+    const RunNumbers n = check_runnable(c);
+    set_threads(c);
+    TerminalObserver terminal;
+    return resume_run(c, n, dir, terminal);
 }
 
 int cmd_sweep_member(const std::string& dir, int threads) {

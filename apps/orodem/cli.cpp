@@ -102,13 +102,15 @@ void TerminalObserver::progress(const RunProgress& p) {
     if (rate > 0.0)
         text += fmt::format(", {:.0f} steps/s, {} left", rate,
                             duration_text(static_cast<double>(p.total_steps - std::min(p.total_steps, p.step)) / rate));
-    if (tty_) settling(text);
+    if (tty_) show(text);
     else fmt::print("{}\n", text);
 }
 
-void TerminalObserver::settling(const std::string& text) {
+void TerminalObserver::settling(const std::string& text) { show(text); }
+
+void TerminalObserver::show(const std::string& text) {
     if (!tty_) return;
-    fmt::print("\r\033[K{}", text);
+    fmt::print("\r\033[K{}", text);  // the line cleared and rewritten
     std::fflush(stdout);
 }
 

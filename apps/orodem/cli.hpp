@@ -66,6 +66,7 @@ public:
     int stop_requested() const override;
 
 private:
+    void show(const std::string& text);  // on a terminal only
     bool tty_;
     double shown_at_ = -1.0;  // elapsed_s when the run line was last shown [s]
     std::optional<StopSignals> signals_;

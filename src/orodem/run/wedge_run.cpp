@@ -60,13 +60,14 @@ int WedgeRun::run() {
         // line and the command that continues the run.
         if (const int sig = obs_.stop_requested()) {
             if (sim_.step_count != next_output) check();
-            stop_with_checkpoint(fmt::format("interrupted by {}", sig == SIGINT ? "SIGINT" : "SIGTERM"), "resume with");
+            stop_with_checkpoint(RunEvent::interrupted, fmt::format("interrupted by {}", sig == SIGINT ? "SIGINT" : "SIGTERM"),
+                                 "resume with");
             return 128 + sig;
         }
         if (wall_time_limit_reached()) {
             if (sim_.step_count != next_output) check();
             stop_with_checkpoint(
-                fmt::format("stopped at the wall-time limit run.max_wall_minutes = {:g}", c_.run.max_wall_minutes),
+                RunEvent::time_limit, fmt::format("stopped at the wall-time limit run.max_wall_minutes = {:g}", c_.run.max_wall_minutes),
                 "continue with");
             return static_cast<int>(ExitCode::time_limit);
         }
@@ -363,13 +364,12 @@ bool WedgeRun::wall_time_limit_reached() const {
            sim_.step_count < total_steps_;
 }
 
-void WedgeRun::stop_with_checkpoint(const std::string& why, const char* continue_label) {
+void WedgeRun::stop_with_checkpoint(RunEvent kind, const std::string& why, const char* continue_label) {
     const std::string path = save_checkpoint(state_bytes());
     const double wall = elapsed();
     const std::string what =
         fmt::format("{} at step {} (S = {:.4f}) after {:.1f} s wall", why, sim_.step_count, S(), wall);
-    event(why.rfind("interrupted", 0) == 0 ? RunEvent::interrupted : RunEvent::time_limit,
-          fmt::format("{}; checkpoint {}", what, path), wall);
+    event(kind, fmt::format("{}; checkpoint {}", what, path), wall);
     log_.line("step phases (this process): " + phase_breakdown(sim_.phase_times()));
     obs_.progress_done();
     obs_.stopped(what, path, continue_label, fmt::format("orodem run {}/config.toml --out {} --resume", dir_, dir_));

@@ -64,7 +64,7 @@ private:
     std::string save_checkpoint(const std::string& bytes);
     bool checkpoint_timer_due(std::uint64_t next_output) const;
     bool wall_time_limit_reached() const;
-    void stop_with_checkpoint(const std::string& why, const char* continue_label);
+    void stop_with_checkpoint(RunEvent kind, const std::string& why, const char* continue_label);
     void finish();
     /// A log.txt line that is an event of events.csv, at this step and S.
     void event(RunEvent kind, std::string text, double wall_s = std::nan(""), double steps_per_s = std::nan(""));

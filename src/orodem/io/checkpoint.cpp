@@ -60,6 +60,31 @@ void check_offsets(const std::vector<std::uint32_t>& b, std::size_t n, std::size
         if (b[k] > b[k + 1]) bad(fmt::format("{} decreases at {}", what, k));
 }
 
+/// A fault field by field (its struct has padding, whose bytes are not ours to write).
+void put_fault(ByteWriter& w, const Fault& f) {
+    w.put(f.id);
+    w.put(static_cast<std::int32_t>(f.vergence));
+    w.put(f.dip_deg);
+    w.put(f.root.x), w.put(f.root.y), w.put(f.tip.x), w.put(f.tip.y);
+    w.put(f.length), w.put(f.width), w.put(f.slip);
+    w.put(f.discs);
+    w.put(static_cast<std::uint8_t>(f.active));
+    w.put(f.first_S), w.put(f.last_S);
+}
+
+Fault get_fault(ByteReader& r) {
+    Fault f;
+    r.get(f.id);
+    f.vergence = r.get<std::int32_t>();
+    r.get(f.dip_deg);
+    r.get(f.root.x), r.get(f.root.y), r.get(f.tip.x), r.get(f.tip.y);
+    r.get(f.length), r.get(f.width), r.get(f.slip);
+    r.get(f.discs);
+    f.active = r.get<std::uint8_t>() != 0;
+    r.get(f.first_S), r.get(f.last_S);
+    return f;
+}
+
 struct Header {
     CheckpointInfo info;
     std::string_view payload;
@@ -74,9 +99,10 @@ Header read_header(std::string_view bytes, AcceptedHashes expected_hash, bool ch
     std::uint64_t size = 0, payload_sum = 0, header_sum = 0;
     try {
         r.get(h.info.version);
-        if (h.info.version != kCheckpointVersion)
-            throw CheckpointError(fmt::format("checkpoint format version {}, this orodem ({}) reads version {}",
-                                              h.info.version, ORODEM_VERSION, kCheckpointVersion));
+        if (h.info.version < kOldestCheckpointVersion || h.info.version > kCheckpointVersion)
+            throw CheckpointError(fmt::format("checkpoint format version {}, this orodem ({}) reads versions {}-{}",
+                                              h.info.version, ORODEM_VERSION, kOldestCheckpointVersion,
+                                              kCheckpointVersion));
         h.info.program_version = r.get_string();
         r.get(h.info.config_hash);
         r.get(h.info.step);
@@ -180,6 +206,12 @@ std::string encode_checkpoint(const Simulation& sim, const RunLoopState& run, st
     w.put(run.series_bytes);
     w.put(run.log_bytes);
     w.put(run.surface_y_mean);
+    put_tag(w, "structures");
+    w.put_vector(run.F_total);
+    w.put(run.next_fault_id);
+    w.put(run.faults_bytes);
+    w.put(static_cast<std::uint64_t>(run.faults.size()));
+    for (const Fault& f : run.faults) put_fault(w, f);
     put_tag(w, "end");
 
     const std::string& payload = w.bytes();
@@ -315,6 +347,16 @@ void decode_checkpoint(std::string_view bytes, AcceptedHashes expected_config_ha
         r.get(run.series_bytes);
         r.get(run.log_bytes);
         r.get(run.surface_y_mean);
+        if (h.info.version >= 3) {
+            expect_tag(r, "structures");
+            r.get_vector(run.F_total);
+            if (!run.F_total.empty() && run.F_total.size() != n) bad("F_total size");
+            r.get(run.next_fault_id);
+            r.get(run.faults_bytes);
+            const auto nf = r.get<std::uint64_t>();
+            if (nf > h.payload.size()) bad("fault count out of range");
+            for (std::uint64_t k = 0; k < nf; ++k) run.faults.push_back(get_fault(r));
+        }
         expect_tag(r, "end");
         if (r.remaining() != 0) bad(fmt::format("{} bytes left over", r.remaining()));
         if (!(internals.awake_begin <= internals.awake_end && internals.awake_end <= p.size() &&

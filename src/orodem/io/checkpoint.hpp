@@ -24,6 +24,8 @@
 #include <utility>
 #include <vector>
 
+#include "orodem/analysis/faults.hpp"
+#include "orodem/analysis/strain.hpp"
 #include "orodem/core/error.hpp"
 #include "orodem/core/vec2.hpp"
 #include "orodem/engine/simulation.hpp"
@@ -31,7 +33,8 @@
 
 namespace orodem {
 
-inline constexpr std::uint32_t kCheckpointVersion = 2;  // 2: sleeping-zone ranges
+inline constexpr std::uint32_t kCheckpointVersion = 3;  // 2: sleeping-zone ranges; 3: strain and faults
+inline constexpr std::uint32_t kOldestCheckpointVersion = 2;  // still read (no strain or fault state)
 
 /// A checkpoint that cannot be used: corrupt, truncated, another format
 /// version, not a checkpoint. what() says which. (An I/O problem: exit 4.)
@@ -48,6 +51,12 @@ struct RunLoopState {
     std::uint64_t series_bytes = 0;                     // series.csv length [bytes]
     std::uint64_t log_bytes = 0;                        // log.txt length [bytes]
     double surface_y_mean = 0.0;                        // undeformed surface (measured on the layer) [m]
+    // Structures (analysis/strain.hpp, analysis/faults.hpp); empty from a
+    // version-2 checkpoint: the finite strain then counts from the resume.
+    std::vector<Mat2> F_total;                          // finite deformation gradient by id [-]
+    std::vector<Fault> faults;                          // every fault found so far (FaultTracker::known)
+    std::int64_t next_fault_id = 1;                     // FaultTracker::next_id
+    std::uint64_t faults_bytes = 0;                     // faults.csv length [bytes]
 };
 
 /// FNV-1a 64 of the resolved config without the keys at their defaults

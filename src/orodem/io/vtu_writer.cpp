@@ -67,6 +67,8 @@ void write_vtu(const std::string& path, const ParticleStore& p, const std::vecto
         all_point_data.push_back(make_array("vol_strain", "Float64", 1, strain->volumetric));
         all_point_data.push_back(make_array("rotation", "Float64", 1, strain->rotation));
         all_point_data.push_back(make_array("d2min", "Float64", 1, strain->d2min));
+        if (strain->shear_total.size() == n)
+            all_point_data.push_back(make_array("shear_strain_total", "Float64", 1, strain->shear_total));
     }
     const Array points = make_array("Points", "Float64", 3, pts);
     const std::vector<Array> cells = {make_array("connectivity", "Int64", 1, conn),

@@ -229,7 +229,7 @@ int resume_run(const Config& c, const RunNumbers& n, const std::string& dir, Run
                                       "again in a new directory: orodem run {}/config.toml --out NEW_DIR",
                                       dir, e.what(), dir));
     }
-    for (const auto& n : notes) obs.warning(n, false);
+    for (const auto& note : notes) obs.warning(note, false);
     // log.txt beyond the checkpoint: the rows and warnings that the resumed
     // run writes again, and the history of the pieces since: the previous
     // piece's end line (a signal, a time limit) with its phase times, and the
@@ -248,9 +248,10 @@ int resume_run(const Config& c, const RunNumbers& n, const std::string& dir, Run
     // existed) before the log is cut back.
     RunLog log(dir);
     truncate_file(dir + "/series.csv", st.series_bytes);
+    if (st.faults_bytes > 0 || std::filesystem::exists(dir + "/faults.csv")) truncate_file(dir + "/faults.csv", st.faults_bytes);
     truncate_file(dir + "/log.txt", st.log_bytes);
     for (const auto& line : history) log.line(line);
-    for (const auto& n : notes) log.line("warning: " + n);
+    for (const auto& note : notes) log.line("warning: " + note);
     EventRecord e;
     e.kind = RunEvent::resume;
     e.step = w.sim.step_count;

@@ -34,6 +34,10 @@ const std::vector<SeriesColumn> kColumns = {
     {"beta_inner_deg", F::g6, [](const SeriesRow& r) { return r.m.beta_inner_deg; }, true},
     {"beta_outer_deg", F::g6, [](const SeriesRow& r) { return r.m.beta_outer_deg; }, true},
     {"retro_break_x_over_h0", F::g6, [](const SeriesRow& r) { return r.m.retro_break_x / r.h0; }, true},
+    {"active_pro_faults", F::integer, [](const SeriesRow& r) { return static_cast<double>(r.pro_faults); }, false},
+    {"active_retro_faults", F::integer, [](const SeriesRow& r) { return static_cast<double>(r.retro_faults); }, false},
+    {"front_thrust_x_over_h0", F::g6, [](const SeriesRow& r) { return r.front_thrust_x / r.h0; }, false},
+    {"stage", F::integer, [](const SeriesRow& r) { return static_cast<double>(r.stage); }, false},
 };
 
 void append(std::string& out, ColumnFormat f, double v) {

@@ -33,6 +33,10 @@ struct SeriesRow {
     double max_speed = 0.0;            // [m/s]
     double base_normal_force = 0.0;    // [N]
     double trailing_wall_push = 0.0;   // [N]
+    int pro_faults = 0;                // active pro-vergent faults (analysis/faults.hpp) [-]
+    int retro_faults = 0;              // active retro-vergent faults [-]
+    double front_thrust_x = 0.0;       // root x of the most proside active pro-vergent fault (NaN: none) [m]
+    int stage = 0;                     // the paper's stage, classify_stage [-]
 };
 
 enum class ColumnFormat {

@@ -13,6 +13,7 @@
 #include "orodem/boundary/basal_boundary.hpp"
 #include "orodem/boundary/fixed_retro.hpp"
 #include "orodem/core/error.hpp"
+#include "orodem/io/fault_table.hpp"
 #include "orodem/io/packing_file.hpp"
 #include "orodem/io/series_reader.hpp"
 #include "orodem/io/vtu_writer.hpp"
@@ -100,6 +101,14 @@ WedgeRun::WedgeRun(const Config& c, WedgeSetup& w, const std::string& dir, RunLo
     }
     series_ = LineFile(series_path);
     if (!resumed_) series_.line(series_header());
+    // faults.csv: a run resumed from a checkpoint older than the fault table
+    // (faults_bytes = 0) starts it at the resume.
+    const std::string faults_path = dir_ + "/faults.csv";
+    const bool faults_new = !resumed_ || st_.faults_bytes == 0;
+    faults_file_ = LineFile(faults_path);
+    if (faults_new) faults_file_.line(faults_header());
+    const double d_mean = c_.packing.r_min + c_.packing.r_max;
+    fault_params_ = fault_params(d_mean, h0_);
     const double dt = sim_.params.dt;
     steps_per_output_ = std::max<std::uint64_t>(
         1, static_cast<std::uint64_t>(std::llround(c_.wedge.output_ds * h0_ / (c_.wedge.v * dt))));
@@ -183,6 +192,7 @@ void WedgeRun::advance_to(std::uint64_t step) {
 
 void WedgeRun::output() {
     check();
+    measure_structures();
     const WedgeMeasures m = write_row();
     draw();
     warn_if_plate_too_short(m);
@@ -251,6 +261,10 @@ WedgeMeasures WedgeRun::write_row() {
     r.max_speed = sim_.max_speed();
     r.base_normal_force = sim_.wall_force(kWallProBase).y;
     r.trailing_wall_push = -sim_.wall_force(kWallProEnd).x;
+    r.pro_faults = fault_counts_.pro;
+    r.retro_faults = fault_counts_.retro;
+    r.front_thrust_x = fault_counts_.front_x;
+    r.stage = stage_;
     series_.line(series_line(r, series_columns_));
     const double secs = elapsed();
     const double rate = static_cast<double>(sim_.step_count - rate_from_step_) / std::max(secs - rate_from_secs_, 1e-9);
@@ -266,17 +280,40 @@ WedgeMeasures WedgeRun::write_row() {
     return r.m;
 }
 
-// The snapshot (with the strain over the interval since the previous
-// output: neighbourhoods of two mean disc diameters, analysis/strain.hpp)
-// and its picture pair.
+// The strain over the interval since the previous output (neighbourhoods of
+// two mean disc diameters, analysis/strain.hpp), the finite strain from S = 0,
+// and the faults of the interval with their track ids (analysis/faults.hpp),
+// appended to faults.csv. The first output of a run has no interval: no
+// faults, stage 0.
+void WedgeRun::measure_structures() {
+    const std::vector<Vec2> x_now = positions_by_id(sim_.particles);
+    strain_ = local_strain(st_.x_then, x_now, 2.0 * (c_.packing.r_min + c_.packing.r_max));
+    std::vector<Fault> found;
+    if (sim_.step_count > 0 && st_.outputs > 0) {
+        accumulate_gradient(st_.F_total, strain_.F);
+        found = detect_faults(x_now, strain_.shear, fault_params_).faults;
+    } else if (st_.F_total.size() < x_now.size()) {
+        st_.F_total.resize(x_now.size());
+    }
+    strain_.shear_total.resize(st_.F_total.size());
+    for (std::size_t i = 0; i < st_.F_total.size(); ++i) strain_.shear_total[i] = strain_measures(st_.F_total[i]).shear;
+    FaultTracker tracker{std::move(st_.faults), st_.next_fault_id};
+    const std::vector<Fault> all = tracker.update(std::move(found), S(), h0_);
+    st_.faults = std::move(tracker.known);
+    st_.next_fault_id = tracker.next_id;
+    fault_counts_ = count_faults(all);
+    stage_ = classify_stage(all, h0_);
+    for (const Fault& f : all) faults_file_.line(faults_line(S(), f, h0_));
+}
+
+// The snapshot (with the strain arrays of measure_structures) and its
+// picture pair.
 void WedgeRun::draw() {
     const std::vector<double> rel = relative_displacement(sim_, st_.x_then);
-    std::vector<Vec2> x_now = positions_by_id(sim_.particles);
-    const StrainField strain = local_strain(st_.x_then, x_now, 2.0 * (c_.packing.r_min + c_.packing.r_max));
-    st_.x_then = std::move(x_now);
+    st_.x_then = positions_by_id(sim_.particles);
     const std::string name = fmt::format("S{:06.3f}", S());
     const VtuStamp stamp{S(), sim_.step_count, sim_.time};
-    write_vtu(fmt::format("{}/snapshots/{}.vtu", dir_, name), sim_.particles, rel, &stamp, &strain);
+    write_vtu(fmt::format("{}/snapshots/{}.vtu", dir_, name), sim_.particles, rel, &stamp, &strain_);
     st_.pvd.emplace_back(S(), fmt::format("snapshots/{}.vtu", name));
     write_pvd(dir_ + "/run.pvd", st_.pvd);
     render_picture_pair(sim_.particles, sim_.step_count > 0 ? &rel : nullptr, view_, c_.run.experiment, S(),
@@ -343,6 +380,7 @@ void WedgeRun::check_space_left() {
 
 std::string WedgeRun::state_bytes() {
     st_.series_bytes = file_bytes(dir_ + "/series.csv");
+    st_.faults_bytes = file_bytes(dir_ + "/faults.csv");
     st_.log_bytes = file_bytes(dir_ + "/log.txt");
     return encode_checkpoint(sim_, st_, cfg_hash_);
 }

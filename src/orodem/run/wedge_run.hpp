@@ -18,6 +18,8 @@
 #include <optional>
 #include <string>
 
+#include "orodem/analysis/faults.hpp"
+#include "orodem/analysis/strain.hpp"
 #include "orodem/engine/health.hpp"
 #include "orodem/io/checkpoint.hpp"
 #include "orodem/io/config.hpp"
@@ -53,6 +55,7 @@ private:
     void advance_to(std::uint64_t step);
     void output();                     // one output: check, row, pictures, warnings, checkpoint
     void check();                      // health check; throws InstabilityError, or sets stop_for_
+    void measure_structures();         // strain over the interval, finite strain, faults (faults.csv)
     WedgeMeasures write_row();
     void draw();
     void warn_if_plate_too_short(const WedgeMeasures& m);
@@ -84,6 +87,11 @@ private:
     bool initial_overlap_allowed_ = false;  // run.allow_initial_overlap used: no overlap limit at step 0
     std::size_t series_columns_;        // columns of series.csv (an older run keeps its own)
     LineFile series_;
+    LineFile faults_file_;              // faults.csv
+    FaultParams fault_params_;
+    StrainField strain_;                // over the interval ending at this output
+    FaultCounts fault_counts_;          // active faults of this output
+    int stage_ = 0;                     // the paper's stage of this output (classify_stage)
     std::uint64_t steps_per_output_ = 1;
     std::uint64_t n_outputs_ = 1;
     std::uint64_t total_steps_ = 1;

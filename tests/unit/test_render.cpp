@@ -93,6 +93,11 @@ ViewOptions view(int width_px) {
     return o;
 }
 
+std::string slurp_text(const fs::path& f) {
+    std::ifstream in(f, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 /// One panel of p at S = 0.
 PictureInfo draw(const ParticleStore& p, const std::vector<double>* disp, const ViewOptions& o, const std::string& path) {
     return render_panels({{&p, disp, 0.0}}, o, path);
@@ -184,8 +189,7 @@ TEST(Render, SvgAndPdfAreWritten) {
             ASSERT_TRUE(fs::exists(f)) << f;
             EXPECT_GT(fs::file_size(f), 100u) << f;
             EXPECT_FALSE(fs::exists(f.string() + ".tmp"));
-            std::ifstream in(f, std::ios::binary);
-            const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+            const std::string text = slurp_text(f);
             if (std::string(ext) == "pdf") {
                 EXPECT_EQ(text.substr(0, 5), "%PDF-") << f;
             } else {
@@ -336,6 +340,10 @@ TEST(Render, StackedPanelsShareTheWidthAndTheFrame) {
     EXPECT_EQ(a0.height, a2.height);
     EXPECT_GT(a1.top, a0.top + a0.height);
     EXPECT_NEAR(three.height_px - one.height_px, 2 * (a1.top - a0.top), 1.0);
+    // A disc over the top edge is cut off, and the panel says so.
+    p.add({1.0, 2.0}, 0.3, 2500.0);
+    render_panels({{&p, nullptr, 1.0}}, o, (dir / "cut.svg").string());
+    EXPECT_NE(slurp_text(dir / "cut.svg").find(">material above the frame is cut off</text>"), std::string::npos);
     // Horizons legend: the swatches and the band thickness.
     EXPECT_EQ(three.legend.swatches.size(), 4u);
     EXPECT_NE(three.legend.title.find("0.25 h0"), std::string::npos) << three.legend.title;

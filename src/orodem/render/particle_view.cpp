@@ -110,9 +110,12 @@ void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layou
     const bool by_disp = o.color_by == "displacement";
     const ParticleStore& p = *panel.p;
     c.clip(x0, top, L.plot_w, L.plot_h);
+    bool cut_above = false;  // material reaching over the frame's top edge
     for (std::size_t s = 0; s < p.size(); ++s) {
         const double x = p.x[s].x, y = p.x[s].y, r = p.radius[s];
-        if (x + r < o.x_min || x - r > o.x_max || y + r < o.y_min || y - r > o.y_max) continue;
+        if (x + r < o.x_min || x - r > o.x_max || y + r < o.y_min) continue;
+        cut_above = cut_above || y + r > o.y_max;
+        if (y - r > o.y_max) continue;
         const Colour col = !by_disp ? horizon_colour(p.initial_depth[s], o.band, p.side[s] != 0)
                            : panel.displacement && full > 0.0 ? displacement_colour((*panel.displacement)[s] / full)
                                                               : displacement_colour(0.0);
@@ -144,6 +147,9 @@ void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layou
     const double label_size = 0.9 * L.F;
     c.fill_rect(x0 + lw, top + lw, text_width(label, label_size, true) + 0.6 * L.F, 1.3 * L.F, {1, 1, 1});
     c.text(label, x0 + 0.3 * L.F, top + 0.35 * L.F, label_size, HAlign::left, VAlign::top, true);
+    if (cut_above)  // said, not hidden: the run's frame was too low for this wedge
+        c.text("material above the frame is cut off", x0 + L.plot_w - 0.3 * L.F, top + 0.35 * L.F, size,
+               HAlign::right, VAlign::top, false, false, kSPoint);
 }
 
 }  // namespace

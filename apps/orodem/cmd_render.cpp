@@ -1,85 +1,104 @@
-// `orodem render RUN_DIR`: re-draws the horizon and displacement pictures
-// (SPEC §3) from the saved snapshots listed in run.pvd into RUN_DIR/figures/.
-#include <algorithm>
-#include <cmath>
+// `orodem render RUN_DIR`: pictures from a run's saved snapshots (run.pvd),
+// in the run's own frame and colour scales (render/particle_view.hpp):
+// with --out FILE one figure stacking the snapshots nearest --at (as the
+// paper's Figures 9 and 13); without it the horizon and displacement
+// picture of each snapshot into --dir (default RUN_DIR/figures/rendered/,
+// never the run's own figures/). An existing file is never replaced
+// without --force: every target is checked before anything is drawn.
+// `orodem movie RUN_DIR --out FILE.mp4|.gif`: every snapshot, animated by ffmpeg.
 #include <filesystem>
-#include <limits>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "orodem/core/error.hpp"
-#include "orodem/analysis/wedge_profile.hpp"
-#include "orodem/io/config.hpp"
 #include "orodem/io/files.hpp"
-#include "orodem/io/vtu_writer.hpp"
-#include "orodem/render/particle_view.hpp"
+#include "orodem/render/run_figures.hpp"
 #include "orodem/run/run_dir.hpp"
-#include "orodem/setup/wedge.hpp"
 
 #include "commands.hpp"
 
 namespace fs = std::filesystem;
 namespace orodem {
 
-int cmd_render(const std::string& run_dir, const std::vector<double>& at, const std::string& format, int width) {
-    require_run_dir(run_dir);
-    const fs::path dir(run_dir);
-    const ConfigBasics config = read_config_basics((dir / "config.toml").string());
-    const double h0 = config.h0;
-    const std::string& experiment = config.experiment;
+namespace {
 
-    const std::vector<Snapshot> snaps = read_pvd((dir / "run.pvd").string());
+/// ConfigError when a target exists and --force was not given.
+void refuse_existing(const std::vector<std::string>& targets, bool force, const char* command) {
+    if (force) return;
+    std::size_t existing = 0;
+    std::string first;
+    for (const auto& t : targets)
+        if (fs::exists(t) && existing++ == 0) first = t;
+    if (existing == 0) return;
+    throw ConfigError(fmt::format("'{}'{} exists already; orodem {} does not replace files unless asked: choose "
+                                  "another output or add --force",
+                                  first, existing > 1 ? fmt::format(" (and {} more)", existing - 1) : "", command));
+}
+
+/// The paper's choice when --at is absent: four snapshots evenly spread up to the last.
+std::vector<double> default_stack(const std::vector<Snapshot>& snaps) {
+    const double last = snaps.back().S;
+    return {0.25 * last, 0.5 * last, 0.75 * last, last};
+}
+
+}  // namespace
+
+int cmd_render(const RenderArgs& a) {
+    require_run_dir(a.run_dir);
+    const SavedRun run = open_saved_run(a.run_dir);
+    if (!a.out.empty()) {
+        picture_format(a.out);  // exit 2 before anything else
+        refuse_existing({a.out}, a.force, "render");
+        const std::vector<std::size_t> chosen = nearest_snapshots(run.snaps, a.at.empty() ? default_stack(run.snaps) : a.at);
+        const fs::path parent = fs::absolute(a.out).parent_path();
+        make_dirs(parent.string());
+        const PictureInfo info = render_run_figure(run, chosen, a.color_by, a.width, a.out);
+        std::string list;
+        for (std::size_t k : chosen) list += fmt::format("{}{:.2f}", list.empty() ? "" : ", ", run.snaps[k].S);
+        fmt::print("render: {} panels (S = {}), {} x {} px, in {}\n", chosen.size(), list, info.width_px,
+                   info.height_px, a.out);
+        return 0;
+    }
     std::vector<std::size_t> chosen;
-    if (at.empty()) {
-        for (std::size_t k = 0; k < snaps.size(); ++k) chosen.push_back(k);
-    } else {
-        for (double S : at) {
-            std::size_t best = 0;
-            for (std::size_t k = 1; k < snaps.size(); ++k)
-                if (std::fabs(snaps[k].S - S) < std::fabs(snaps[best].S - S)) best = k;
-            chosen.push_back(best);
-        }
-        std::sort(chosen.begin(), chosen.end());
-        chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
-    }
-
-    make_dirs((dir / "figures").string());
-    int pictures = 0;
+    if (a.at.empty())
+        for (std::size_t k = 0; k < run.snaps.size(); ++k) chosen.push_back(k);
+    else
+        chosen = nearest_snapshots(run.snaps, a.at);
+    const std::string dir = a.dir.empty() ? (fs::path(a.run_dir) / "figures" / "rendered").string() : a.dir;
+    std::vector<std::string> targets;
     for (std::size_t k : chosen) {
-        const Snapshot& snap = snaps[k];
-        const std::string vtu = (dir / snap.file).string();
-        const VtuData d = read_vtu(vtu);
-        const auto& radius = d.require("radius", vtu);
-        const auto& depth = d.require("initial_depth", vtu);
-        const auto& side = d.require("side", vtu);
-        const auto& rel = d.require("rel_disp", vtu);
-        ParticleStore p;
-        double x_lo = INFINITY, x_hi = -INFINITY, top = 0.0;
-        for (std::size_t i = 0; i < d.x.size(); ++i) {
-            const std::size_t s = p.add(d.x[i], radius[i], 1.0);
-            p.initial_depth[s] = depth[i];
-            p.side[s] = side[i] != 0 ? 1 : 0;
-            x_lo = std::min(x_lo, d.x[i].x - radius[i]);
-            x_hi = std::max(x_hi, d.x[i].x + radius[i]);
-            top = std::max(top, d.x[i].y + radius[i]);
-        }
-        if (p.size() == 0) throw IoError(fmt::format("'{}': snapshot holds no discs", vtu));
-        ViewOptions view;
-        view.x_min = x_lo;
-        view.x_max = x_hi;
-        view.y_min = 0.0;
-        view.y_max = top + 0.3 * h0;
-        view.h0 = h0;
-        view.band = h0 / 5.0;
-        view.width_px = width;
-        const std::string name = fs::path(snap.file).stem().string();
-        // The first snapshot has no previous output to move from.
-        pictures += render_picture_pair(p, k > 0 ? &rel : nullptr, view, experiment, snap.S,
-                                        (dir / "figures").string(), name, format);
+        const std::string name = fs::path(run.snaps[k].file).stem().string();
+        targets.push_back(fmt::format("{}/horizons_{}.{}", dir, name, a.format));
+        if (k > 0) targets.push_back(fmt::format("{}/displacement_{}.{}", dir, name, a.format));
     }
-    fmt::print("render: {} pictures of {} snapshots in {}\n", pictures, chosen.size(), (dir / "figures").string());
+    refuse_existing(targets, a.force, "render");
+    make_dirs(dir);
+    std::size_t pictures = 0;
+    for (std::size_t k : chosen) {
+        const Frame f = read_frame(run, k);
+        ViewOptions view = run_view(run.config, a.width);
+        view.per_frame_scale = f.per_frame_scale;
+        pictures += render_picture_pair(f.p, f.displacement.empty() ? nullptr : &f.displacement, view, f.S, dir,
+                                        fs::path(run.snaps[k].file).stem().string(), a.format)
+                        .size();
+    }
+    fmt::print("render: {} pictures of {} snapshots in {}\n", pictures, chosen.size(), dir);
+    return 0;
+}
+
+int cmd_movie(const MovieArgs& a) {
+    require_run_dir(a.run_dir);
+    movie_format(a.out);  // exit 2 before anything else
+    refuse_existing({a.out}, a.force, "movie");
+    const SavedRun run = open_saved_run(a.run_dir);
+    MovieOptions o;
+    o.color_by = a.color_by;
+    o.width_px = a.width;
+    o.fps = a.fps;
+    const std::size_t frames = render_run_movie(run, o, a.out);
+    fmt::print("movie: {} frames ({} per second) in {}\n", frames, a.fps, a.out);
     return 0;
 }
 

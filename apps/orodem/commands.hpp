@@ -37,9 +37,35 @@ int cmd_bench_pile(const std::string& pile, std::uint64_t steps, int threads);
 /// (run/run_plots.hpp).
 int cmd_plot(const std::vector<std::string>& run_dirs, const std::string& out, bool seeds = false);
 
-/// orodem render (cmd_render.cpp): horizon and displacement pictures of the
-/// snapshots nearest each S of `at` (all when empty) into RUN_DIR/figures/.
-int cmd_render(const std::string& run_dir, const std::vector<double>& at, const std::string& format, int width);
+/// orodem render's arguments.
+struct RenderArgs {
+    std::string run_dir;
+    std::vector<double> at;             // S of the snapshots to draw (nearest ones); empty: default
+    std::string out;                    // one stacked figure (.png, .svg, .pdf); empty: a picture pair per snapshot
+    std::string dir;                    // the picture pairs' folder; empty: RUN_DIR/figures/rendered
+    std::string format = "png";         // the picture pairs' format
+    std::string color_by = "horizons";  // the stacked figure's colouring: horizons | displacement
+    int width = 1600;                   // picture width [px]
+    bool force = false;                 // replace existing files
+};
+/// orodem render (cmd_render.cpp): with `out`, one figure stacking the
+/// snapshots nearest each S of `at` (four evenly spread when empty); without,
+/// the horizon and displacement pictures of those snapshots (all when empty)
+/// into `dir`. Refuses (exit 2) to replace a file without `force`.
+int cmd_render(const RenderArgs& a);
+
+/// orodem movie's arguments.
+struct MovieArgs {
+    std::string run_dir;
+    std::string out;                    // .mp4 or .gif
+    std::string color_by = "horizons";  // horizons | displacement
+    int width = 1600;                   // frame width [px]
+    double fps = 4.0;                   // snapshots per second [1/s]
+    bool force = false;                 // replace an existing file
+};
+/// orodem movie (cmd_render.cpp): every snapshot of the run as one frame,
+/// encoded by ffmpeg (exit 6 when it is not installed).
+int cmd_movie(const MovieArgs& a);
 /// orodem measure (cmd_measure.cpp): the wedge measures of each saved snapshot
 /// of a wedge run, taken again, as CSV on standard output.
 int cmd_measure(const std::string& run_dir);

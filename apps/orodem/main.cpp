@@ -1,6 +1,7 @@
 // orodem command line: parses arguments with CLI11, hands typed values to the
 // subcommands (commands.hpp) and maps errors to exit statuses (0 ok,
-// 1 internal, 2 bad config or arguments, 3 unstable, 4 I/O; an interrupted
+// 1 internal, 2 bad config or arguments, 3 unstable, 4 I/O, 6 a missing program
+// (ffmpeg); an interrupted
 // run returns 130 for SIGINT, 143 for SIGTERM after writing a checkpoint).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -89,20 +90,42 @@ int main(int argc, char** argv) {
                                           "one curve each: the mean over the seeds, over a band shaded from the "
                                           "lowest to the highest value");
 
-    std::string render_dir, render_format = "png";
-    std::vector<double> render_at;
-    int render_width = 1600;
-    auto* render = app.add_subcommand("render", "Re-draw the horizon and displacement pictures of a run's saved "
-                                                "snapshots (run.pvd) into RUN_DIR/figures/");
-    render->add_option("run_dir", render_dir, "Run directory")->required();
-    render->add_option("--at", render_at, "Shortenings S, e.g. --at 1,2.5: the snapshots nearest them (default all)")
+    RenderArgs ra;
+    auto* render = app.add_subcommand("render", "Pictures of a run's saved snapshots (run.pvd) in the run's frame and "
+                                                "colour scales: with --out FILE one figure stacking the snapshots "
+                                                "nearest --at (as the paper's Figures 9 and 13), else the horizon and "
+                                                "displacement picture of each snapshot into --dir");
+    render->add_option("run_dir", ra.run_dir, "Run directory")->required();
+    render->add_option("--at", ra.at, "Shortenings S, e.g. --at 1,2.5: the snapshots nearest them (default: with "
+                                      "--out four evenly spread up to the last, else all)")
         ->delimiter(',');
-    render->add_option("--format", render_format, "Picture format")
-        ->check(CLI::IsMember({"png", "svg", "pdf"}))
+    auto* render_out = render->add_option("--out", ra.out, "One stacked figure, .png, .svg (text as <text>) or .pdf");
+    render->add_option("--color-by", ra.color_by, "The stacked figure's colouring")
+        ->check(CLI::IsMember({"horizons", "displacement"}))
+        ->needs(render_out)
         ->capture_default_str();
-    render->add_option("--width", render_width, "Picture width in pixels")
+    render->add_option("--dir", ra.dir, "Folder of the per-snapshot pictures (default RUN_DIR/figures/rendered)")
+        ->excludes(render_out);
+    render->add_option("--format", ra.format, "Format of the per-snapshot pictures")
+        ->check(CLI::IsMember({"png", "svg", "pdf"}))
+        ->excludes(render_out)
+        ->capture_default_str();
+    render->add_option("--width", ra.width, "Picture width in pixels")
         ->check(CLI::Range(200, 20000))
         ->capture_default_str();
+    render->add_flag("--force", ra.force, "Replace files that exist already (never done otherwise)");
+
+    MovieArgs ma;
+    auto* movie = app.add_subcommand("movie", "An animation of a run's saved snapshots, one frame each, in the run's "
+                                              "frame and colour scales (needs ffmpeg: exit status 6 without it)");
+    movie->add_option("run_dir", ma.run_dir, "Run directory")->required();
+    movie->add_option("--out", ma.out, "Output file, .mp4 or .gif")->required();
+    movie->add_option("--color-by", ma.color_by, "Colouring")
+        ->check(CLI::IsMember({"horizons", "displacement"}))
+        ->capture_default_str();
+    movie->add_option("--fps", ma.fps, "Frames (snapshots) per second")->check(CLI::Range(0.1, 60.0))->capture_default_str();
+    movie->add_option("--width", ma.width, "Frame width in pixels")->check(CLI::Range(200, 8000))->capture_default_str();
+    movie->add_flag("--force", ma.force, "Replace the file if it exists already");
 
     std::string measure_dir;
     auto* measure = app.add_subcommand("measure", "The wedge measures (H, alpha, beta, the retroside in two "
@@ -169,7 +192,8 @@ int main(int argc, char** argv) {
         if (*sweep) return cmd_sweep(sweep_args, sweep_vary, sweep_out, sweep_jobs);
         if (*calib) return cmd_calibrate(calib_args, calib_out);
         if (*plot) return cmd_plot(plot_dirs, plot_out, plot_seeds);
-        if (*render) return cmd_render(render_dir, render_at, render_format, render_width);
+        if (*render) return cmd_render(ra);
+        if (*movie) return cmd_movie(ma);
         if (*measure) return cmd_measure(measure_dir);
         if (*taper) return cmd_taper(taper_phi, taper_phib, taper_mu_b, taper_beta);
         if (*pile) return cmd_bench_pile(pile_file, pile_steps, pile_threads);
@@ -182,6 +206,9 @@ int main(int argc, char** argv) {
     } catch (const InterruptedError& e) {
         fmt::print(stderr, "\norodem: interrupted: {}\n", e.what());
         return 128 + e.signal;
+    } catch (const MissingToolError& e) {
+        fmt::print(stderr, "orodem: error: {}\n", e.what());
+        return static_cast<int>(ExitCode::missing_tool);
     } catch (const InstabilityError& e) {
         fmt::print(stderr, "orodem: unstable: {}\n", e.what());
         return static_cast<int>(ExitCode::unstable);

@@ -85,10 +85,13 @@ def test_snapshot_equals_vtks_reading(run_dir):
     pts = vtk_to_numpy(grid.GetPoints().GetData())
     assert np.array_equal(pts[:, 0], s["x"]) and np.array_equal(pts[:, 1], s["y"])
     pd = grid.GetPointData()
-    assert pd.GetNumberOfArrays() == 13  # 9 per disc + the interval's strain (4)
+    assert pd.GetNumberOfArrays() == 15  # 9 per disc + the interval's strain (4) + shear_strain_total + rel_disp_abs
     for k in range(pd.GetNumberOfArrays()):
         a = pd.GetArray(k)
         assert np.array_equal(vtk_to_numpy(a), s[a.GetName()]), a.GetName()
+    # rel_disp is rel_disp_abs [m] over its largest value, the same division.
+    assert s["rel_disp_abs"].max() > 0
+    assert np.array_equal(s["rel_disp_abs"] / s["rel_disp_abs"].max(), s["rel_disp"])
     fd = grid.GetFieldData()
     assert {fd.GetArray(k).GetName(): fd.GetArray(k).GetValue(0) for k in range(3)} == {
         "S": s["S"], "step": s["step"], "time": s["time"]}

@@ -191,26 +191,33 @@ TEST_F(PlotRender, SeriesReaderReadsNanAndRejectsBadRows) {
 }
 
 TEST_F(PlotRender, RenderRedrawsTheSnapshots) {
+    // Into figures/rendered/ (the run's own figures/ are left alone); the
+    // hand-made snapshots have no rel_disp_abs: the per-frame scale.
     const fs::path run = make_run("r1", 0.3);
     Result r = orodem("render r1");
     ASSERT_EQ(r.status, 0) << r.err;
+    const fs::path out = run / "figures" / "rendered";
+    int height = 0;
     for (const char* f : {"horizons_S00.000.png", "horizons_S01.000.png", "displacement_S01.000.png"}) {
-        const Png d = decode_png(run / "figures" / f);
+        const Png d = decode_png(out / f);
         EXPECT_TRUE(d.ok) << f;
         EXPECT_EQ(d.width, 1600) << f;
         EXPECT_GT(d.height, 100) << f;
+        if (height == 0) height = d.height;
+        EXPECT_EQ(d.height, height) << f;  // one frame for the run
     }
+    EXPECT_FALSE(fs::exists(run / "figures" / "horizons_S00.000.png"));
     // The first snapshot has nothing to be displaced from.
-    EXPECT_FALSE(fs::exists(run / "figures" / "displacement_S00.000.png"));
-    // --at picks the nearest snapshot; --format and --width apply.
+    EXPECT_FALSE(fs::exists(out / "displacement_S00.000.png"));
+    // --at picks the nearest snapshot; --format, --width and --dir apply.
     r = orodem("render r1 --at 0.8 --format svg --width 800");
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_HAS(slurp(run / "figures" / "horizons_S01.000.svg"), "<svg");
-    EXPECT_TRUE(fs::exists(run / "figures" / "displacement_S01.000.svg"));
-    EXPECT_FALSE(fs::exists(run / "figures" / "horizons_S00.000.svg"));
-    r = orodem("render r1 --at 0.1,0.2 --width 640");
+    EXPECT_HAS(slurp(out / "horizons_S01.000.svg"), "<svg");
+    EXPECT_HAS(slurp(out / "displacement_S01.000.svg"), "(old snapshot)</text>");
+    EXPECT_FALSE(fs::exists(out / "horizons_S00.000.svg"));
+    r = orodem("render r1 --at 0.1,0.2 --width 640 --dir small");
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_EQ(decode_png(run / "figures" / "horizons_S00.000.png").width, 640);
+    EXPECT_EQ(decode_png(work_ / "small" / "horizons_S00.000.png").width, 640);
     EXPECT_EQ(orodem("render r1 --format gif").status, 2);
     EXPECT_EQ(orodem("render r1 --at one").status, 2);
 }

@@ -180,13 +180,20 @@ TEST_F(Resume, ASecondSignalIsIgnoredUntilTheShutdownCheckpointIsWritten) {
 
 // Off a terminal (the reference run's stdout is a file) the progress is one
 // plain line per output: S, its percentage of s_max, and once a second has
-// passed the rate and the time left; no carriage returns or escape codes.
+// passed the rate and the time left (whether a second has passed depends on
+// the machine, so the rate is checked only where it is printed); no carriage
+// returns or escape codes.
 TEST_F(Resume, OffATerminalProgressIsOnePlainLinePerOutput) {
     const std::string out = slurp(root_ / "A.out");
     EXPECT_EQ(out.find('\r'), std::string::npos) << out;
     EXPECT_EQ(out.find('\033'), std::string::npos) << out;
     EXPECT_HAS(out, "S = 0.000 of 0.5 (0.0%)\n");
-    EXPECT_HAS(out, "S = 0.500 of 0.5 (100.0%), ");
+    EXPECT_HAS(out, "S = 0.500 of 0.5 (100.0%)");
+    const std::size_t rate_at = out.find("steps/s");
+    if (rate_at != std::string::npos) {
+        EXPECT_EQ(out.rfind(", ", rate_at) + 2 < rate_at, true) << out;
+        EXPECT_NE(out.find(" left\n", rate_at), std::string::npos) << out;
+    }
     std::size_t lines = 0;
     std::istringstream in(out);
     for (std::string line; std::getline(in, line);) lines += line.rfind("S = ", 0) == 0;

@@ -1,14 +1,19 @@
 // Pictures of the particle state (SPEC §3 "Pictures"; render/particle_view):
 // the PNG decodes with the requested width and the height that the view's
 // aspect ratio implies; disc centres carry their horizon colour (proside band
-// A, band B, retroside a darker shade of A); the background is white; SVG and
-// PDF are written too; and 30,000 discs render quickly (time printed only).
+// A, band B, retroside a darker shade of A); the background is white; SVG
+// (with <text>) and PDF are written too; the displacement colours follow the
+// fixed scale (or the per-frame quantile for old snapshots); the legend is
+// the same whatever the data; a stack of panels shares one width; and
+// 30,000 discs render quickly (time printed only).
 #include <gtest/gtest.h>
 
 #include <cairo.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -31,10 +36,6 @@ fs::path scratch_dir(const std::string& name) {
     fs::create_directories(d);
     return d;
 }
-
-// Plot frame of particle_view.cpp: margins in pixels (left, right, top,
-// bottom) around the data area, whose scale is the same in x and y.
-constexpr double kMarginL = 70, kMarginR = 20, kMarginT = 40, kMarginB = 50;
 
 struct Rgb8 {
     int r, g, b;
@@ -63,6 +64,12 @@ struct Image {
         std::memcpy(&v, row + 4 * x, 4);  // RGB24 / ARGB32: 0x??RRGGBB native
         return {static_cast<int>((v >> 16) & 0xff), static_cast<int>((v >> 8) & 0xff), static_cast<int>(v & 0xff)};
     }
+    /// The pixel where the point c [m] lies in a one-panel picture drawn with o.
+    Rgb8 at_point(const ViewOptions& o, Vec2 c) const {
+        const PlotArea a = plot_area(o, 1, 0);
+        return at(static_cast<int>(std::floor(a.left + (c.x - o.x_min) * a.scale)),
+                  static_cast<int>(std::floor(a.top + (o.y_max - c.y) * a.scale)));
+    }
 };
 
 ::testing::AssertionResult close_color(Rgb8 got, Rgb8 want) {
@@ -82,8 +89,18 @@ ViewOptions view(int width_px) {
     o.x_s = 0.0;
     o.width_px = width_px;
     o.band = 0.25;
-    o.label = "test";
+    o.title = "test";
     return o;
+}
+
+std::string slurp_text(const fs::path& f) {
+    std::ifstream in(f, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+/// One panel of p at S = 0.
+PictureInfo draw(const ParticleStore& p, const std::vector<double>* disp, const ViewOptions& o, const std::string& path) {
+    return render_panels({{&p, disp, 0.0}}, o, path);
 }
 
 }  // namespace
@@ -103,29 +120,31 @@ TEST(Render, PngSizeAndHorizonColours) {
     p.initial_depth[r] = 0.05;
     p.side[r] = 1;
 
-    const int width = 1690;  // data area 1600 px over 8 m: 200 px/m
+    const int width = 1690;
     const ViewOptions o = view(width);
     const std::string png = (dir / "h.png").string();
-    render_particles(p, nullptr, o, png);
+    const PictureInfo info = draw(p, nullptr, o, png);
     ASSERT_TRUE(fs::exists(png));
     EXPECT_FALSE(fs::exists(png + ".tmp"));
     Image img(png);
     ASSERT_TRUE(img.ok());
 
-    // Width as requested; height: the data area keeps the view's aspect
-    // ratio (same px/m in x and y) inside the fixed pixel margins.
-    const double scale = (width - kMarginL - kMarginR) / (o.x_max - o.x_min);
-    const int height = static_cast<int>(std::ceil((o.y_max - o.y_min) * scale + kMarginT + kMarginB));
+    // Width as requested, height as reported; the plot area keeps the view's
+    // aspect ratio (same px/m in x and y).
+    const PlotArea a0 = plot_area(o, 1, 0);
     EXPECT_EQ(img.width(), width);
-    EXPECT_EQ(img.height(), height);  // 2 m · 200 px/m + 90 = 490
+    EXPECT_EQ(info.width_px, width);
+    EXPECT_EQ(img.height(), info.height_px);
+    EXPECT_EQ(picture_size(o, 1).height_px, info.height_px);
+    EXPECT_NEAR(a0.height, a0.width * (o.y_max - o.y_min) / (o.x_max - o.x_min), 0.5);
+    EXPECT_NEAR(a0.scale, a0.width / (o.x_max - o.x_min), 1e-9);
+    // Fonts for print: 1/60 of the width, at least 2% of the height.
+    EXPECT_GT(width / 60.0, 0.02 * img.height());
 
-    auto pixel_of = [&](Vec2 x) {
-        return img.at(static_cast<int>(std::floor(kMarginL + (x.x - o.x_min) * scale)),
-                      static_cast<int>(std::floor(kMarginT + (o.y_max - x.y) * scale)));
-    };
+    auto pixel_of = [&](Vec2 x) { return img.at_point(o, x); };
     // Colours of particle_view.cpp: band A (0.93, 0.76, 0.38), band B
     // (0.55, 0.70, 0.85), retroside = 0.55 × the proside colour. A disc's
-    // centre pixel lies 60 px inside its edge, so it is fully covered (no
+    // centre pixel lies 58 px inside its edge, so it is fully covered (no
     // antialiasing blend).
     const Rgb8 band_a = expect8(0.93, 0.76, 0.38), band_b = expect8(0.55, 0.70, 0.85);
     const Rgb8 retro_a = expect8(0.55 * 0.93, 0.55 * 0.76, 0.55 * 0.38);
@@ -143,17 +162,15 @@ TEST(Render, PngSizeAndHorizonColours) {
     EXPECT_TRUE(close_color(pixel_of({1.0, 1.8}), {255, 255, 255}));
     EXPECT_TRUE(close_color(pixel_of({-3.5, 0.2}), {255, 255, 255}));
 
-    // Margin-independent aspect check: doubling the data-area width doubles
-    // its height, so the picture grows by (Δwidth) · (y range / x range),
-    // ±1 px for the ceil.
+    // A wider picture: the same frame at a larger scale.
     ViewOptions o2 = o;
     o2.width_px = width + 800;
     const std::string png2 = (dir / "h2.png").string();
-    render_particles(p, nullptr, o2, png2);
+    draw(p, nullptr, o2, png2);
     Image img2(png2);
     ASSERT_TRUE(img2.ok());
     EXPECT_EQ(img2.width(), width + 800);
-    EXPECT_NEAR(img2.height() - img.height(), 800.0 * (o.y_max - o.y_min) / (o.x_max - o.x_min), 1.0);
+    EXPECT_GT(img2.height(), img.height());
     fs::remove_all(dir);
 }
 
@@ -168,15 +185,23 @@ TEST(Render, SvgAndPdfAreWritten) {
             ViewOptions o = view(800);
             o.color_by = color_by;
             const fs::path f = dir / (std::string(color_by) + "." + ext);
-            render_particles(p, &disp, o, f.string());
+            draw(p, &disp, o, f.string());
             ASSERT_TRUE(fs::exists(f)) << f;
             EXPECT_GT(fs::file_size(f), 100u) << f;
             EXPECT_FALSE(fs::exists(f.string() + ".tmp"));
-            std::ifstream in(f, std::ios::binary);
-            std::string head(256, '\0');
-            in.read(head.data(), static_cast<std::streamsize>(head.size()));
-            if (std::string(ext) == "pdf") EXPECT_EQ(head.substr(0, 5), "%PDF-") << f;
-            else EXPECT_NE(head.find("<svg"), std::string::npos) << f;
+            const std::string text = slurp_text(f);
+            if (std::string(ext) == "pdf") {
+                EXPECT_EQ(text.substr(0, 5), "%PDF-") << f;
+            } else {
+                // Editable text: the labels are <text> elements, not glyph outlines.
+                EXPECT_NE(text.find("<svg"), std::string::npos) << f;
+                EXPECT_NE(text.find(">S = 0.00</text>"), std::string::npos) << f;
+                EXPECT_NE(text.find(">x / h0 (S point at 0)</text>"), std::string::npos) << f;
+                EXPECT_NE(text.find(">" + picture_legend(o).title + "</text>"), std::string::npos) << f;
+                EXPECT_EQ(text.find("<symbol"), std::string::npos) << f;
+                EXPECT_EQ(std::count(text.begin(), text.end(), '\n') > 20, true);
+                EXPECT_NE(text.find("<circle"), std::string::npos) << f;
+            }
         }
     }
     fs::remove_all(dir);
@@ -200,7 +225,7 @@ TEST(Render, ThirtyThousandDiscsTiming) {
     o.x_max = 3.1;
     const std::string png = (dir / "big.png").string();
     const auto t0 = std::chrono::steady_clock::now();
-    render_particles(p, nullptr, o, png);
+    draw(p, nullptr, o, png);
     const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::printf("    render of %zu discs to a %d px wide PNG: %.3f s\n", p.size(), o.width_px, dt);
     Image img(png);
@@ -223,40 +248,125 @@ TEST(Render, PositiveQuantileIsTheNearestRankOfThePositiveValues) {
     EXPECT_EQ(positive_quantile({}, 0.99), 0.0);
 }
 
-TEST(Render, DisplacementColourIsScaledToTheQuantileNotTheMaximum) {
-    // 200 discs: 198 carry 0.1 (a shear zone), one 0.05, one outlier 1.0 (a
-    // disc rolling down a slope). The 0.99 quantile of the 200 positives is
-    // the value of rank 198: 0.1. So a 0.1 disc is full dark red (scaled
-    // value 1: (0.65, 0.1, 0.1)), the 0.05 disc mid orange (scaled 0.5:
-    // (1, 0.75, 0.1)), and the outlier clipped to full red. Scaled to the
-    // maximum instead, the 0.1 disc would be near white (1, 0.95, 0.82).
+TEST(Render, DisplacementColoursFollowTheFixedScale) {
+    // Values per unit convergence: 0 is light grey (0.82, 0.82, 0.82), half
+    // the top of the bar (kDisplacementFull = 0.3) sits halfway between the
+    // map's second and third stops ((1, 0.85, 0.3) and (0.9, 0.35, 0.1)):
+    // (0.95, 0.6, 0.2), the top is dark red (0.45, 0, 0.05), and an outlier
+    // ten times the top is clipped to it. The colours do not depend on the
+    // other discs' values (no per-frame maximum or quantile).
     const fs::path dir = scratch_dir("disp");
     ParticleStore p;
     std::vector<double> scalar;
+    const Vec2 c_zero{-3.0, 1.0}, c_half{-1.5, 1.0}, c_top{0.0, 1.0}, c_outlier{2.0, 1.0};
+    for (auto [c, v] : {std::pair{c_zero, 0.0}, {c_half, 0.5 * kDisplacementFull}, {c_top, kDisplacementFull},
+                        {c_outlier, 10 * kDisplacementFull}}) {
+        p.add(c, 0.3, 2500.0);
+        scalar.push_back(v);
+    }
+    ViewOptions o = view(1690);
+    o.color_by = "displacement";
+    const std::string png = (dir / "d.png").string();
+    const PictureInfo info = draw(p, &scalar, o, png);
+    Image img(png);
+    ASSERT_TRUE(img.ok());
+    auto pixel = [&](Vec2 c) { return img.at_point(o, c); };
+    EXPECT_TRUE(close_color(pixel(c_zero), expect8(0.82, 0.82, 0.82)));
+    EXPECT_TRUE(close_color(pixel(c_half), expect8(0.95, 0.6, 0.2)));
+    EXPECT_TRUE(close_color(pixel(c_top), expect8(0.45, 0.0, 0.05)));
+    EXPECT_TRUE(close_color(pixel(c_outlier), expect8(0.45, 0.0, 0.05)));
+    // The legend: the fixed bar, whatever the values.
+    EXPECT_EQ(info.legend.lo, 0.0);
+    EXPECT_EQ(info.legend.hi, kDisplacementFull);
+    EXPECT_EQ(info.legend.ticks, (std::vector<double>{0.0, 0.1, 0.2, 0.3}));
+    for (double& v : scalar) v *= 0.01;
+    const PictureInfo again = draw(p, &scalar, o, (dir / "d2.png").string());
+    EXPECT_EQ(again.legend.hi, info.legend.hi);
+    EXPECT_EQ(again.legend.title, info.legend.title);
+    EXPECT_EQ(again.height_px, info.height_px);
+    fs::remove_all(dir);
+}
+
+TEST(Render, OldSnapshotsAreScaledToTheirQuantileAndSaySo) {
+    // A snapshot with only the normalised rel_disp (per_frame_scale): 198
+    // discs carry 0.1, one 0.05, one outlier 1.0. The 0.99 quantile of the
+    // 200 positives is the value of rank 198, 0.1: a 0.1 disc is at the top
+    // colour, the 0.05 disc halfway, the outlier clipped; the legend runs
+    // from 0 to 1 and names the per-frame scale.
+    const fs::path dir = scratch_dir("old");
+    ParticleStore p;
+    std::vector<double> scalar;
     const Vec2 c_zone{-2.5, 1.0}, c_half{-0.5, 1.0}, c_outlier{2.0, 1.0};
-    p.add(c_zone, 0.3, 2500.0);
-    scalar.push_back(0.1);
-    p.add(c_half, 0.3, 2500.0);
-    scalar.push_back(0.05);
-    p.add(c_outlier, 0.3, 2500.0);
-    scalar.push_back(1.0);
+    for (auto [c, v] : {std::pair{c_zone, 0.1}, {c_half, 0.05}, {c_outlier, 1.0}}) {
+        p.add(c, 0.3, 2500.0);
+        scalar.push_back(v);
+    }
     for (int k = 0; k < 197; ++k) {  // off the picture: they count in the scale only
         p.add({100.0 + k, 1.0}, 0.3, 2500.0);
         scalar.push_back(0.1);
     }
     ViewOptions o = view(1690);
     o.color_by = "displacement";
+    o.per_frame_scale = true;
     const std::string png = (dir / "d.png").string();
-    render_particles(p, &scalar, o, png);
+    const PictureInfo info = draw(p, &scalar, o, png);
     Image img(png);
     ASSERT_TRUE(img.ok());
-    const double scale = (1690 - kMarginL - kMarginR) / (o.x_max - o.x_min);
-    auto pixel = [&](Vec2 c) {
-        return img.at(static_cast<int>(kMarginL + (c.x - o.x_min) * scale),
-                      static_cast<int>(kMarginT + (o.y_max - c.y) * scale));
-    };
-    EXPECT_TRUE(close_color(pixel(c_zone), expect8(0.65, 0.1, 0.1)));
-    EXPECT_TRUE(close_color(pixel(c_half), expect8(1.0, 0.75, 0.1)));
-    EXPECT_TRUE(close_color(pixel(c_outlier), expect8(0.65, 0.1, 0.1)));
+    auto pixel = [&](Vec2 c) { return img.at_point(o, c); };
+    EXPECT_TRUE(close_color(pixel(c_zone), expect8(0.45, 0.0, 0.05)));
+    EXPECT_TRUE(close_color(pixel(c_half), expect8(0.95, 0.6, 0.2)));
+    EXPECT_TRUE(close_color(pixel(c_outlier), expect8(0.45, 0.0, 0.05)));
+    EXPECT_EQ(info.legend.hi, 1.0);
+    EXPECT_NE(info.legend.title.find("this frame"), std::string::npos) << info.legend.title;
     fs::remove_all(dir);
+}
+
+TEST(Render, StackedPanelsShareTheWidthAndTheFrame) {
+    // Three panels: the same width, three plot areas of one size one above
+    // the other, the picture taller than one panel by two panels and gaps.
+    const fs::path dir = scratch_dir("stack");
+    ParticleStore p;
+    p.add({0.0, 0.5}, 0.3, 2500.0);
+    const ViewOptions o = view(1200);
+    const PictureInfo one = picture_size(o, 1);
+    const PictureInfo three = render_panels({{&p, nullptr, 1.0}, {&p, nullptr, 2.0}, {&p, nullptr, 3.0}}, o,
+                                            (dir / "s.png").string());
+    Image img((dir / "s.png").string());
+    ASSERT_TRUE(img.ok());
+    EXPECT_EQ(img.width(), 1200);
+    EXPECT_EQ(img.height(), three.height_px);
+    const PlotArea a0 = plot_area(o, 3, 0), a1 = plot_area(o, 3, 1), a2 = plot_area(o, 3, 2);
+    EXPECT_EQ(a0.left, a2.left);
+    EXPECT_EQ(a0.height, a2.height);
+    EXPECT_GT(a1.top, a0.top + a0.height);
+    EXPECT_NEAR(three.height_px - one.height_px, 2 * (a1.top - a0.top), 1.0);
+    // A disc over the top edge is cut off, and the panel says so.
+    p.add({1.0, 2.0}, 0.3, 2500.0);
+    render_panels({{&p, nullptr, 1.0}}, o, (dir / "cut.svg").string());
+    EXPECT_NE(slurp_text(dir / "cut.svg").find(">material above the frame is cut off</text>"), std::string::npos);
+    // Horizons legend: the swatches and the band thickness.
+    EXPECT_EQ(three.legend.swatches.size(), 4u);
+    EXPECT_NE(three.legend.title.find("0.25 h0"), std::string::npos) << three.legend.title;
+    fs::remove_all(dir);
+}
+
+TEST(Render, RunViewIsTheModelBoxOfTheConfig) {
+    // exp1, h0 = 10 m, s_max = 3, pro_margin = 10, retro_length = 8: x from
+    // -10.5 h0 to 8.5 h0, y from -0.05 h0 to (1 + sqrt(6/6) + 0.15) h0.
+    ConfigBasics b;
+    b.experiment = "exp1";
+    b.h0 = 10.0;
+    b.s_max = 3.0;
+    b.pro_margin = 10.0;
+    b.retro_length = 8.0;
+    const ViewOptions v = run_view(b, 1000);
+    EXPECT_DOUBLE_EQ(v.x_min, -105.0);
+    EXPECT_DOUBLE_EQ(v.x_max, 85.0);
+    EXPECT_DOUBLE_EQ(v.y_min, -0.5);
+    EXPECT_NEAR(v.y_max, 21.5, 1e-12);
+    EXPECT_EQ(v.width_px, 1000);
+    EXPECT_EQ(v.title, "exp1");
+    // The critical wedge ends at its backstop.
+    b.experiment = "critical-wedge";
+    EXPECT_DOUBLE_EQ(run_view(b).x_max, 5.0);
 }

@@ -10,7 +10,7 @@ std::vector<Vec2> positions_by_id(const ParticleStore& p) {
     return x;
 }
 
-std::vector<double> relative_displacement(const Simulation& sim, const std::vector<Vec2>& x_then) {
+std::vector<double> relative_displacement_m(const Simulation& sim, const std::vector<Vec2>& x_then) {
     const ParticleStore& p = sim.particles;
     const ContactStore& cs = sim.contacts;
     std::vector<double> r(p.size(), 0.0);
@@ -23,10 +23,18 @@ std::vector<double> relative_displacement(const Simulation& sim, const std::vect
         r[i] = std::max(r[i], d);
         r[j] = std::max(r[j], d);
     }
-    const double m = *std::max_element(r.begin(), r.end());
-    if (m > 0.0)
-        for (double& v : r) v /= m;
     return r;
+}
+
+std::vector<double> normalised(std::vector<double> v) {
+    const double m = v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
+    if (m > 0.0)
+        for (double& x : v) x /= m;
+    return v;
+}
+
+std::vector<double> relative_displacement(const Simulation& sim, const std::vector<Vec2>& x_then) {
+    return normalised(relative_displacement_m(sim, x_then));
 }
 
 }  // namespace orodem

@@ -14,6 +14,7 @@ enum class ExitCode : int {
     unstable = 3,      // the simulation blew up (NaN, overlap, speed, lost particle)
     io = 4,            // a file could not be read or written
     time_limit = 5,    // stopped at run.max_wall_minutes with a checkpoint; --resume continues
+    missing_tool = 6,  // a program orodem calls is not installed (ffmpeg for orodem movie)
     interrupted = 130  // SIGINT (SIGTERM gives 143)
 };
 
@@ -25,6 +26,13 @@ public:
 
 /// A failed read or write; what() names the path and the OS error.
 class IoError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// A program that orodem calls (ffmpeg) is not installed; what() names it
+/// and the Debian package. Exit status 6.
+class MissingToolError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
 };

@@ -193,13 +193,23 @@ std::string first_config_difference(const Config& a, const Config& b);
 /// run.experiment of a config file's text, read leniently (a config of another
 /// orodem version, or with errors, still gives its name); "" when absent or not TOML.
 std::string experiment_in(const std::string& config_text);
-/// What `orodem render` needs of a run's config.toml, read leniently as
-/// experiment_in: IoError when it is not TOML, ConfigError without a positive packing.h0.
+/// What the pictures of a run need of its config (`orodem render` and
+/// `orodem movie` read it from config.toml leniently, as experiment_in; the
+/// run loop takes it from its Config): the experiment, h0 and the model box
+/// that fixes the frame of every picture of the run (render/particle_view.hpp
+/// run_view). Keys absent from an older config.toml take their defaults.
 struct ConfigBasics {
     std::string experiment;  // "run" when absent
     double h0 = 0.0;         // [m]
+    double s_max = WedgeConfig{}.s_max;                // [-]
+    double output_ds = WedgeConfig{}.output_ds;        // [-]
+    double pro_margin = WedgeConfig{}.pro_margin;      // [h0]
+    double retro_length = WedgeConfig{}.retro_length;  // [h0]
 };
+/// IoError when the file is not TOML, ConfigError without a positive packing.h0.
 ConfigBasics read_config_basics(const std::string& path);
+/// The same from a loaded config.
+ConfigBasics config_basics(const Config& c);
 
 /// One `--set key=value` override; value is TOML syntax (1.5, true, "clusters").
 using Override = std::pair<std::string, std::string>;

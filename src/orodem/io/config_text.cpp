@@ -140,6 +140,21 @@ ConfigBasics read_config_basics(const std::string& path) {
     b.h0 = config["packing"]["h0"].value_or(std::numeric_limits<double>::quiet_NaN());
     if (!(b.h0 > 0)) throw ConfigError(fmt::format("'{}': no positive packing.h0", path));
     b.experiment = config["run"]["experiment"].value_or(std::string("run"));
+    b.s_max = config["wedge"]["s_max"].value_or(b.s_max);
+    b.output_ds = config["wedge"]["output_ds"].value_or(b.output_ds);
+    b.pro_margin = config["wedge"]["pro_margin"].value_or(b.pro_margin);
+    b.retro_length = config["wedge"]["retro_length"].value_or(b.retro_length);
+    return b;
+}
+
+ConfigBasics config_basics(const Config& c) {
+    ConfigBasics b;
+    b.experiment = c.run.experiment;
+    b.h0 = c.packing.h0;
+    b.s_max = c.wedge.s_max;
+    b.output_ds = c.wedge.output_ds;
+    b.pro_margin = c.wedge.pro_margin;
+    b.retro_length = c.wedge.retro_length;
     return b;
 }
 

@@ -29,7 +29,7 @@ Array make_array(const std::string& name, const char* type, int comps, const std
 }  // namespace
 
 void write_vtu(const std::string& path, const ParticleStore& p, const std::vector<double>& rel_disp,
-               const VtuStamp* stamp, const StrainField* strain) {
+               const VtuStamp* stamp, const StrainField* strain, const std::vector<double>* rel_disp_abs) {
     const std::size_t n = p.size();
     // Discs in id order, so that files of one run line up point by point.
     std::vector<double> pts(3 * n), vel(3 * n), radius(n), depth(n), omega(n), rd(n, 0.0);
@@ -69,6 +69,11 @@ void write_vtu(const std::string& path, const ParticleStore& p, const std::vecto
         all_point_data.push_back(make_array("d2min", "Float64", 1, strain->d2min));
         if (strain->shear_total.size() == n)
             all_point_data.push_back(make_array("shear_strain_total", "Float64", 1, strain->shear_total));
+    }
+    if (rel_disp_abs && rel_disp_abs->size() == n) {  // per slot: into id order
+        std::vector<double> abs(n);
+        for (std::uint32_t k = 0; k < n; ++k) abs[k] = (*rel_disp_abs)[p.slot_of_id[k]];
+        all_point_data.push_back(make_array("rel_disp_abs", "Float64", 1, abs));
     }
     const Array points = make_array("Points", "Float64", 3, pts);
     const std::vector<Array> cells = {make_array("connectivity", "Int64", 1, conn),

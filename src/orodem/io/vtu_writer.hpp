@@ -1,7 +1,8 @@
 // ParaView output: one VTK UnstructuredGrid (.vtu) per snapshot, one vertex
 // cell per disc, with the point data of SPEC §4 (id, radius, velocity,
-// initial_depth, side, cluster_id, rel_disp, plus omega and fixed), field
-// data S, step and time (VtuStamp), and a run.pvd collection carrying S as
+// initial_depth, side, cluster_id, rel_disp, plus omega and fixed; the
+// strain arrays and rel_disp_abs in a run's snapshots), field data S, step
+// and time (VtuStamp), and a run.pvd collection carrying S as
 // the time value. Data are raw binary
 // appended (little-endian, UInt64 headers); files are written atomically.
 #pragma once
@@ -27,8 +28,11 @@ struct VtuStamp {
 /// rel_disp: per slot (may be empty: written as zeros). stamp: S, step and
 /// time as field data (none when null). strain: by particle id, written as
 /// shear_strain, vol_strain, rotation and d2min (none when null).
+/// rel_disp_abs: per slot, the relative displacement before normalisation
+/// [m], written as rel_disp_abs after the others (none when null).
 void write_vtu(const std::string& path, const ParticleStore& p, const std::vector<double>& rel_disp,
-               const VtuStamp* stamp = nullptr, const StrainField* strain = nullptr);
+               const VtuStamp* stamp = nullptr, const StrainField* strain = nullptr,
+               const std::vector<double>* rel_disp_abs = nullptr);
 
 /// run.pvd listing (S, file name relative to the pvd) pairs.
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& entries);

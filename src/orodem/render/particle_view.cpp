@@ -1,18 +1,10 @@
 #include "orodem/render/particle_view.hpp"
 
-#include <cairo-pdf.h>
-#include <cairo-svg.h>
-#include <cairo.h>
-
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <memory>
-#include <numbers>
 
 #include <fmt/format.h>
 
-#include "orodem/core/error.hpp"
 #include "orodem/io/files.hpp"
 #include "orodem/render/plot_util.hpp"
 
@@ -20,34 +12,219 @@ namespace orodem {
 
 namespace {
 
-struct Rgb {
-    double r, g, b;
+// Two horizon colours (proside) and their darker retroside shades.
+constexpr Colour kBandA{0.93, 0.76, 0.38}, kBandB{0.55, 0.70, 0.85};
+constexpr double kRetroShade = 0.55;
+constexpr Colour kBlack{0, 0, 0}, kSPoint{0.8, 0.0, 0.0};
+// The frame's wedge: slopes whose cotangents add up to this (run_view) [-].
+constexpr double kCotangentSum = 6.0;
+
+Colour shade(Colour c, double f) { return {c.r * f, c.g * f, c.b * f}; }
+
+Colour horizon_colour(double depth, double band, bool retro) {
+    const long k = static_cast<long>(std::floor(std::max(0.0, depth) / band));
+    const Colour c = (k % 2 == 0) ? kBandA : kBandB;
+    return retro ? shade(c, kRetroShade) : c;
+}
+
+/// The displacement colour map at s in [0, 1] (clamped): light grey, yellow,
+/// orange-red, dark red, linear between the stops.
+Colour displacement_colour(double s) {
+    constexpr Colour stops[] = {{0.82, 0.82, 0.82}, {1.0, 0.85, 0.30}, {0.90, 0.35, 0.10}, {0.45, 0.0, 0.05}};
+    constexpr int n = static_cast<int>(std::size(stops)) - 1;
+    s = std::clamp(std::isfinite(s) ? s : 0.0, 0.0, 1.0) * n;
+    const int k = std::min(static_cast<int>(s), n - 1);
+    const double f = s - k;
+    const Colour a = stops[k], b = stops[k + 1];
+    return {a.r + f * (b.r - a.r), a.g + f * (b.g - a.g), a.b + f * (b.b - a.b)};
+}
+
+/// Pixel layout of a picture, every length from the font size F = width / 60.
+struct Layout {
+    double F, left, right, head, gap, bottom;  // [px]
+    double plot_w, plot_h, scale;              // plot area [px], [px per m]
+    int width, height;
 };
 
-// Two horizon colours (proside) and their darker retroside shades.
-constexpr Rgb kBandA{0.93, 0.76, 0.38}, kBandB{0.55, 0.70, 0.85};
-constexpr double kRetroShade = 0.55;
-
-Rgb horizon_color(double depth, double band, bool retro) {
-    const long k = static_cast<long>(std::floor(std::max(0.0, depth) / band));
-    Rgb c = (k % 2 == 0) ? kBandA : kBandB;
-    if (retro) c = {c.r * kRetroShade, c.g * kRetroShade, c.b * kRetroShade};
-    return c;
+Layout layout(const ViewOptions& o, std::size_t panels) {
+    Layout L;
+    L.width = o.width_px;
+    L.F = std::max(12.0, o.width_px / 60.0);
+    L.left = 3.4 * L.F;
+    L.right = 1.2 * L.F;
+    L.head = 3.2 * L.F;
+    L.gap = 0.9 * L.F;
+    L.bottom = 3.0 * L.F;
+    L.plot_w = L.width - L.left - L.right;
+    L.scale = L.plot_w / (o.x_max - o.x_min);
+    L.plot_h = std::round((o.y_max - o.y_min) * L.scale);
+    const double n = static_cast<double>(std::max<std::size_t>(panels, 1));
+    L.height = static_cast<int>(std::ceil(L.head + n * L.plot_h + (n - 1) * L.gap + L.bottom));
+    return L;
 }
 
-Rgb displacement_color(double s) {
-    s = std::clamp(s, 0.0, 1.0);
-    // white -> orange -> dark red
-    if (s < 0.5) return {1.0, 1.0 - 0.5 * s, 1.0 - 1.8 * s};
-    return {1.0 - 0.7 * (s - 0.5), 0.75 - 1.3 * (s - 0.5), 0.1};
+std::string tick_text(double t, double step) { return plot::tick_label(t, step); }
+
+/// The legend in the header's right part, right-aligned at x_right.
+void draw_legend(Canvas& c, const Legend& g, double x_right, const Layout& L) {
+    const double size = 0.85 * L.F;
+    if (g.swatches.empty()) {  // a colour bar
+        const double bar_w = 9.0 * L.F, bar_h = 0.7 * L.F, bar_y = 0.55 * L.F;
+        const double x0 = x_right - bar_w - 0.5 * L.F;
+        constexpr int steps = 120;
+        for (int k = 0; k < steps; ++k)
+            c.fill_rect(x0 + bar_w * k / steps, bar_y, bar_w / steps + 0.5, bar_h, displacement_colour((k + 0.5) / steps));
+        c.stroke_rect(x0, bar_y, bar_w, bar_h, kBlack, 1.0);
+        const double step = g.ticks.size() > 1 ? g.ticks[1] - g.ticks[0] : 1.0;
+        for (std::size_t k = 0; k < g.ticks.size(); ++k) {
+            const double X = x0 + bar_w * (g.ticks[k] - g.lo) / (g.hi - g.lo);
+            c.line(X, bar_y + bar_h, X, bar_y + bar_h + 0.25 * L.F, kBlack, 1.0);
+            const bool last = k + 1 == g.ticks.size();
+            c.text((last ? "≥ " : "") + tick_text(g.ticks[k], step), X, bar_y + bar_h + 0.4 * L.F, size,
+                   HAlign::centre, VAlign::top);
+        }
+        c.text(g.title, x0 - 0.6 * L.F, bar_y + 0.5 * bar_h, size, HAlign::right, VAlign::middle);
+        return;
+    }
+    // Swatches, laid out from the right: "label [ ][ ]" pairs.
+    const double sw = 1.1 * L.F, y = 0.6 * L.F;
+    double x = x_right;
+    for (std::size_t k = g.swatches.size(); k-- > 0;) {
+        const auto& [label, colour] = g.swatches[k];
+        x -= sw;
+        c.fill_rect(x, y, sw, sw, colour);
+        if (!label.empty()) {
+            x -= 0.4 * L.F;
+            c.text(label, x, y + 0.5 * sw, size, HAlign::right, VAlign::middle);
+            x -= text_width(label, size) + 1.0 * L.F;
+        }
+    }
+    c.text(g.title, x_right, y + sw + 0.45 * L.F, size, HAlign::right, VAlign::top);
 }
 
-std::string extension(const std::string& path) {
-    const auto dot = path.rfind('.');
-    return dot == std::string::npos ? "" : path.substr(dot + 1);
+void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layout& L, double top, bool x_labels,
+                double full) {
+    const double x0 = L.left;
+    auto px = [&](double x) { return x0 + (x - o.x_min) * L.scale; };
+    auto py = [&](double y) { return top + (o.y_max - y) * L.scale; };
+    const bool by_disp = o.color_by == "displacement";
+    const ParticleStore& p = *panel.p;
+    c.clip(x0, top, L.plot_w, L.plot_h);
+    bool cut_above = false;  // material reaching over the frame's top edge
+    for (std::size_t s = 0; s < p.size(); ++s) {
+        const double x = p.x[s].x, y = p.x[s].y, r = p.radius[s];
+        if (x + r < o.x_min || x - r > o.x_max || y + r < o.y_min) continue;
+        cut_above = cut_above || y + r > o.y_max;
+        if (y - r > o.y_max) continue;
+        const Colour col = !by_disp ? horizon_colour(p.initial_depth[s], o.band, p.side[s] != 0)
+                           : panel.displacement && full > 0.0 ? displacement_colour((*panel.displacement)[s] / full)
+                                                              : displacement_colour(0.0);
+        c.disc(px(x), py(y), r * L.scale, col);
+    }
+    c.unclip();
+    const double lw = std::max(1.0, L.F / 18.0), size = 0.85 * L.F, bottom = top + L.plot_h;
+    c.stroke_rect(x0, top, L.plot_w, L.plot_h, kBlack, lw);
+    // y ticks [h0] on every panel.
+    const double y_span = (o.y_max - o.y_min) / o.h0, y_step = y_span > 3.0 ? 1.0 : 0.5;
+    for (double t = std::ceil(o.y_min / o.h0 / y_step - 1e-9) * y_step; t * o.h0 <= o.y_max + 1e-9 * o.h0; t += y_step) {
+        const double Y = py(t * o.h0);
+        c.line(x0 - 0.3 * L.F, Y, x0, Y, kBlack, lw);
+        c.text(tick_text(t, y_step), x0 - 0.45 * L.F, Y, size, HAlign::right, VAlign::middle);
+    }
+    // x ticks [h0 from the S point] on every panel, labelled under the last.
+    const double x_step = plot::nice_step((o.x_max - o.x_min) / o.h0, 12);
+    for (double t = std::ceil((o.x_min - o.x_s) / o.h0 / x_step - 1e-9) * x_step; o.x_s + t * o.h0 <= o.x_max;
+         t += x_step) {
+        const double X = px(o.x_s + t * o.h0);
+        c.line(X, bottom, X, bottom + 0.3 * L.F, kBlack, lw);
+        if (x_labels) c.text(tick_text(t, x_step), X, bottom + 0.7 * L.F, size, HAlign::centre, VAlign::top);
+    }
+    // The S point: a red triangle pointing up at the base.
+    const double Xs = px(o.x_s), a = 0.3 * L.F;
+    c.polygon({Xs, bottom, Xs - a, bottom + 1.8 * a, Xs + a, bottom + 1.8 * a}, kSPoint);
+    // The panel's S on a white patch (readable over material).
+    const std::string label = fmt::format("S = {:.2f}", panel.S);
+    const double label_size = 0.9 * L.F;
+    c.fill_rect(x0 + lw, top + lw, text_width(label, label_size, true) + 0.6 * L.F, 1.3 * L.F, {1, 1, 1});
+    c.text(label, x0 + 0.3 * L.F, top + 0.35 * L.F, label_size, HAlign::left, VAlign::top, true);
+    if (cut_above)  // said, not hidden: the run's frame was too low for this wedge
+        c.text("material above the frame is cut off", x0 + L.plot_w - 0.3 * L.F, top + 0.35 * L.F, size,
+               HAlign::right, VAlign::top, false, false, kSPoint);
 }
 
 }  // namespace
+
+ViewOptions run_view(const ConfigBasics& b, int width_px) {
+    const double h0 = b.h0;
+    const bool backstop = experiment_of(b.experiment).backstop;
+    ViewOptions v;
+    v.x_min = -(b.pro_margin + 0.5) * h0;
+    v.x_max = (backstop ? 0.0 : b.retro_length * h0) + 0.5 * h0;
+    v.y_min = -0.05 * h0;
+    v.y_max = h0 * (1.0 + std::sqrt(2.0 * std::max(b.s_max, 0.0) / kCotangentSum)) + 0.15 * h0;
+    v.h0 = h0;
+    v.x_s = 0.0;
+    v.band = h0 / 5.0;
+    v.width_px = width_px;
+    v.title = b.experiment;
+    return v;
+}
+
+Legend picture_legend(const ViewOptions& o) {
+    Legend g;
+    if (o.color_by == "displacement") {
+        if (o.per_frame_scale) {
+            g.title = fmt::format("relative displacement / its {:g}th percentile in this frame (old snapshot)",
+                                  100.0 * o.displacement_quantile);
+            g.lo = 0.0;
+            g.hi = 1.0;
+            g.ticks = {0.0, 0.25, 0.5, 0.75, 1.0};
+        } else {
+            g.title = "relative displacement of neighbours |Δx_i − Δx_j| / (ΔS h0)";
+            g.lo = 0.0;
+            g.hi = kDisplacementFull;
+            g.ticks = {0.0, 0.1, 0.2, 0.3};
+        }
+        return g;
+    }
+    g.title = fmt::format("horizons: bands of initial depth, {:g} h0 thick", o.band / o.h0);
+    g.swatches = {{"proside", kBandA}, {"", kBandB}, {"retroside", shade(kBandA, kRetroShade)},
+                  {"", shade(kBandB, kRetroShade)}};
+    return g;
+}
+
+PictureInfo picture_size(const ViewOptions& o, std::size_t panels) {
+    const Layout L = layout(o, panels);
+    return {L.width, L.height, picture_legend(o)};
+}
+
+PlotArea plot_area(const ViewOptions& o, std::size_t panels, std::size_t k) {
+    const Layout L = layout(o, panels);
+    return {L.left, L.head + static_cast<double>(k) * (L.plot_h + L.gap), L.plot_w, L.plot_h, L.scale};
+}
+
+PictureInfo render_panels(const std::vector<Panel>& panels, const ViewOptions& o, const std::string& path) {
+    const std::string format = picture_format(path);
+    const Layout L = layout(o, panels.size());
+    const Legend legend = picture_legend(o);
+    std::unique_ptr<Canvas> c = make_canvas(format, L.width, L.height);
+    c->text(o.title, L.left, 0.55 * L.F, L.F, HAlign::left, VAlign::top, true);
+    draw_legend(*c, legend, L.width - L.right, L);
+    for (std::size_t k = 0; k < panels.size(); ++k) {
+        double full = 1.0;
+        if (o.color_by == "displacement" && panels[k].displacement)
+            full = o.per_frame_scale ? positive_quantile(*panels[k].displacement, o.displacement_quantile)
+                                     : kDisplacementFull;
+        draw_panel(*c, panels[k], o, L, L.head + static_cast<double>(k) * (L.plot_h + L.gap), k + 1 == panels.size(),
+                   full);
+    }
+    const double stack_bottom = L.height - L.bottom;
+    c->text("x / h0 (S point at 0)", L.left + 0.5 * L.plot_w, stack_bottom + 1.75 * L.F, L.F, HAlign::centre,
+            VAlign::top);
+    c->text("y / h0", 0.35 * L.F, 0.5 * (L.head + stack_bottom), L.F, HAlign::centre, VAlign::top, false, true);
+    write_file_atomic(path, c->finish());
+    return {L.width, L.height, legend};
+}
 
 double positive_quantile(const std::vector<double>& v, double q) {
     std::vector<double> pos;
@@ -61,119 +238,16 @@ double positive_quantile(const std::vector<double>& v, double q) {
     return pos[rank - 1];
 }
 
-void render_particles(const ParticleStore& p, const std::vector<double>* scalar, const ViewOptions& o,
-                      const std::string& path) {
-    const double margin_l = 70, margin_r = 20, margin_t = 40, margin_b = 50;  // [px]
-    const double scale = (o.width_px - margin_l - margin_r) / (o.x_max - o.x_min);  // px per m
-    const int height_px = static_cast<int>(std::ceil((o.y_max - o.y_min) * scale + margin_t + margin_b));
-    const std::string ext = extension(path);
-    std::string bytes;  // the picture, written in one atomic write at the end (io/files.hpp)
-    cairo_surface_t* surface = nullptr;
-    if (ext == "svg") surface = cairo_svg_surface_create_for_stream(plot::append_bytes, &bytes, o.width_px, height_px);
-    else if (ext == "pdf") surface = cairo_pdf_surface_create_for_stream(plot::append_bytes, &bytes, o.width_px, height_px);
-    else surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, o.width_px, height_px);
-    if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS)
-        throw IoError(fmt::format("cannot create picture '{}': {}", path,
-                                  cairo_status_to_string(cairo_surface_status(surface))));
-    cairo_t* cr = cairo_create(surface);
-    cairo_set_source_rgb(cr, 1, 1, 1);
-    cairo_paint(cr);
-
-    auto px = [&](double x) { return margin_l + (x - o.x_min) * scale; };
-    auto py = [&](double y) { return margin_t + (o.y_max - y) * scale; };
-
-    const bool by_displacement = o.color_by == "displacement" && scalar;
-    const double full_red = by_displacement ? positive_quantile(*scalar, o.displacement_quantile) : 0.0;
-
-    // Discs.
-    cairo_save(cr);
-    cairo_rectangle(cr, margin_l, margin_t, (o.x_max - o.x_min) * scale, (o.y_max - o.y_min) * scale);
-    cairo_clip(cr);
-    for (std::size_t s = 0; s < p.size(); ++s) {
-        const double x = p.x[s].x, y = p.x[s].y, r = p.radius[s];
-        if (x + r < o.x_min || x - r > o.x_max || y + r < o.y_min || y - r > o.y_max) continue;
-        const Rgb c = by_displacement
-                          ? displacement_color(full_red > 0.0 ? (*scalar)[s] / full_red : 0.0)
-                          : horizon_color(p.initial_depth[s], o.band, p.side[s] != 0);
-        cairo_set_source_rgb(cr, c.r, c.g, c.b);
-        cairo_new_sub_path(cr);
-        cairo_arc(cr, px(x), py(y), r * scale, 0, 2 * std::numbers::pi);
-        cairo_fill(cr);
-    }
-    cairo_restore(cr);
-
-    // Axes: x in h0 with the S point at 0, y in h0.
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_set_line_width(cr, 1.0);
-    cairo_rectangle(cr, margin_l, margin_t, (o.x_max - o.x_min) * scale, (o.y_max - o.y_min) * scale);
-    cairo_stroke(cr);
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cr, 13);
-    const double span = (o.x_max - o.x_min) / o.h0;
-    const double step = span > 40 ? 5 : span > 16 ? 2 : 1;  // tick spacing [h0]
-    for (double t = std::ceil((o.x_min - o.x_s) / o.h0 / step) * step; t * o.h0 + o.x_s <= o.x_max; t += step) {
-        const double X = px(o.x_s + t * o.h0);
-        cairo_move_to(cr, X, py(o.y_min));
-        cairo_line_to(cr, X, py(o.y_min) + 5);
-        cairo_stroke(cr);
-        const std::string label = fmt::format("{:g}", t);
-        cairo_text_extents_t e;
-        cairo_text_extents(cr, label.c_str(), &e);
-        cairo_move_to(cr, X - e.width / 2, py(o.y_min) + 20);
-        cairo_show_text(cr, label.c_str());
-    }
-    for (double t = std::ceil(o.y_min / o.h0); t * o.h0 <= o.y_max; t += 1) {
-        const double Y = py(t * o.h0);
-        cairo_move_to(cr, margin_l - 5, Y);
-        cairo_line_to(cr, margin_l, Y);
-        cairo_stroke(cr);
-        const std::string label = fmt::format("{:g}", t);
-        cairo_text_extents_t e;
-        cairo_text_extents(cr, label.c_str(), &e);
-        cairo_move_to(cr, margin_l - 10 - e.width, Y + e.height / 2);
-        cairo_show_text(cr, label.c_str());
-    }
-    cairo_move_to(cr, margin_l + 0.5 * (o.x_max - o.x_min) * scale - 60, height_px - 10);
-    cairo_show_text(cr, "x / h0 (S point at 0)");
-    cairo_save(cr);
-    cairo_move_to(cr, 20, margin_t + 0.5 * (o.y_max - o.y_min) * scale + 20);
-    cairo_rotate(cr, -std::numbers::pi / 2);
-    cairo_show_text(cr, "y / h0");
-    cairo_restore(cr);
-    // S point marker and legend.
-    cairo_set_source_rgb(cr, 0.8, 0, 0);
-    cairo_move_to(cr, px(o.x_s), py(o.y_min));
-    cairo_line_to(cr, px(o.x_s) - 6, py(o.y_min) + 10);
-    cairo_line_to(cr, px(o.x_s) + 6, py(o.y_min) + 10);
-    cairo_close_path(cr);
-    cairo_fill(cr);
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_set_font_size(cr, 16);
-    cairo_move_to(cr, margin_l, margin_t - 12);
-    cairo_show_text(cr, o.label.c_str());
-
-    cairo_destroy(cr);
-    cairo_status_t st = CAIRO_STATUS_SUCCESS;
-    if (ext != "svg" && ext != "pdf") st = cairo_surface_write_to_png_stream(surface, plot::append_bytes, &bytes);
-    cairo_surface_finish(surface);
-    if (st == CAIRO_STATUS_SUCCESS) st = cairo_surface_status(surface);
-    cairo_surface_destroy(surface);
-    if (st != CAIRO_STATUS_SUCCESS)
-        throw IoError(fmt::format("cannot draw picture '{}': {}", path, cairo_status_to_string(st)));
-    write_file_atomic(path, bytes);
-}
-
-int render_picture_pair(const ParticleStore& p, const std::vector<double>* rel, ViewOptions view,
-                        const std::string& experiment, double S, const std::string& figures_dir,
-                        const std::string& name, const std::string& ext) {
-    view.label = fmt::format("{}   S = {:.2f}   initial depth", experiment, S);
+std::vector<PictureInfo> render_picture_pair(const ParticleStore& p, const std::vector<double>* disp, ViewOptions view,
+                                             double S, const std::string& dir, const std::string& name,
+                                             const std::string& ext) {
+    std::vector<PictureInfo> out;
     view.color_by = "horizons";
-    render_particles(p, nullptr, view, fmt::format("{}/horizons_{}.{}", figures_dir, name, ext));
-    if (!rel) return 1;
-    view.label = fmt::format("{}   S = {:.2f}   relative displacement since the previous output", experiment, S);
+    out.push_back(render_panels({{&p, nullptr, S}}, view, fmt::format("{}/horizons_{}.{}", dir, name, ext)));
+    if (!disp) return out;
     view.color_by = "displacement";
-    render_particles(p, rel, view, fmt::format("{}/displacement_{}.{}", figures_dir, name, ext));
-    return 2;
+    out.push_back(render_panels({{&p, disp, S}}, view, fmt::format("{}/displacement_{}.{}", dir, name, ext)));
+    return out;
 }
 
 }  // namespace orodem

@@ -1,57 +1,127 @@
-// Pictures of the particle state (SPEC §3; paper Figures 9, 12, 13), drawn
-// with Cairo. Each disc is a filled circle at its true radius. x is shown in
-// units of h0 with the S point at 0; y in units of h0 above the base.
+// Pictures of the particle state (SPEC §3; paper Figures 8, 9, 12, 13), on
+// a render/canvas (PNG and PDF through Cairo, SVG with <text> elements).
+// Each disc is a filled circle at its true radius; x in units of h0 with the
+// S point at 0, y in units of h0 above the base.
 //
-// Colourings: "horizons": alternating bands of initial depth, retroside
-// material (side = 1) darker; "displacement": a scalar per disc (the
-// relative displacement), white → dark red, scaled so that the
-// displacement_quantile of the positive values reads full red and larger
-// values are clipped to it. Why not the maximum: a few discs rolling down
-// a slope between two outputs move much further relative to their
-// neighbours than the discs of a shear zone; scaled to them, the paper-size
-// pictures came out nearly white. The 0.99 quantile of 33,000 discs lets up to 330
-// such outliers through and still leaves the shear zones (thousands of
-// discs) in the colour range.
-// The file is written under a temporary name and renamed; format from the
-// extension (.png, .svg, .pdf).
+// One frame per run: run_view derives the crop from the config alone (the
+// model box: where the incoming plate's trailing wall ends up at s_max, the
+// retroside's end, and a wedge height estimated from s_max), so every
+// picture of a run (written by the run, by `orodem render`, by `orodem
+// movie`) has the same crop, the same pixel size and the same fonts.
+//
+// One colour scale per run: "horizons" colours alternating bands of initial
+// depth (h0/5 thick), retroside material (side = 1) darker; "displacement"
+// colours the relative displacement of neighbours since the previous output,
+// |Δx_i − Δx_j| (max over the disc's neighbours), divided by the convergence
+// over that interval, ΔS h0: a value of 1 means a neighbour moved past the
+// disc by as much as the belt moved. The bar runs from 0 (light grey, so
+// undeformed material stays visible on white) to kDisplacementFull (dark
+// red); larger values are drawn at the top colour. The same for every frame
+// of every run: frames and runs can be compared by colour. (Measured on the
+// demo exp1, S = 1, 2, 3: the 90th percentile is 0.09-0.13, the 99th
+// 0.27-0.41, the largest 0.3-0.65, a few discs rolling down the slopes.)
+// Snapshots written before rel_disp_abs existed hold only the per-snapshot
+// normalised rel_disp; they are drawn with full colour at its 0.99 quantile
+// and the legend says so ("per-frame scale").
+//
+// Every picture carries its legend (a colour bar with its values and unit,
+// or the horizon swatches) and fonts of 1/60 of the width (27 px on a
+// 1600 px picture: 2.7 mm when printed 16 cm wide).
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "orodem/io/config.hpp"
+#include "orodem/render/canvas.hpp"
 #include "orodem/state/particles.hpp"
 
 namespace orodem {
+
+/// Top of the displacement colour bar: relative displacement / (ΔS h0) [-].
+inline constexpr double kDisplacementFull = 0.3;
 
 struct ViewOptions {
     double x_min = 0, x_max = 1;   // visible range [m]
     double y_min = 0, y_max = 1;   // [m]
     double h0 = 1;                 // length unit of the axes [m]
     double x_s = 0;                // S point [m]
-    int width_px = 1600;           // picture width; height follows the aspect ratio
+    int width_px = 1600;           // picture width; the height follows from the frame's aspect ratio
     double band = 1;               // horizon band thickness [m]
     std::string color_by = "horizons";  // horizons | displacement
-    std::string label;             // legend text, e.g. "exp1  S = 2.50"
-    double displacement_quantile = 0.99;  // of the positive scalars: the full-red value
+    std::string title;             // header text, e.g. "exp1"
+    bool per_frame_scale = false;  // displacement values are normalised per frame (old snapshots)
+    double displacement_quantile = 0.99;  // per_frame_scale only: of the positive values, the full-colour one
 };
+
+/// The frame of every picture of a run (see the note above): x from half an
+/// h0 left of where the trailing wall stands at s_max (−pro_margin h0) to
+/// half an h0 beyond the retroside's end (retro_length h0; the backstop at 0
+/// for critical-wedge); y from −0.05 h0 to h0 (1 + sqrt(2 s_max / 6)) +
+/// 0.15 h0: the layer and a triangular wedge above it holding the material
+/// accreted by s_max (area s_max h0²), of slopes whose cotangents add up to
+/// 6 (e.g. 12° and 30°; the wedges measured so far add up to about 9, e.g.
+/// H/h0 = 1.34 at S = 8 in docs/experiments.md, so they fit with room).
+/// Material above the frame is cut off at its top edge, and the panel says
+/// so in red ("material above the frame is cut off").
+ViewOptions run_view(const ConfigBasics& b, int width_px = 1600);
+
+/// What a picture's legend shows, as numbers (tests compare them between frames).
+struct Legend {
+    std::string title;     // e.g. "relative displacement |Δx_i − Δx_j| / (ΔS h0)"
+    double lo = 0, hi = 0; // colour bar ends (displacement); 0, 0 for horizons
+    std::vector<double> ticks;  // labelled values along the bar
+    std::vector<std::pair<std::string, Colour>> swatches;  // horizons: label and colour of each swatch
+};
+/// The legend of pictures drawn with o (frame-independent but for per_frame_scale).
+Legend picture_legend(const ViewOptions& o);
+
+/// One panel of a picture: a state and its displacement values.
+struct Panel {
+    const ParticleStore* p = nullptr;
+    /// Per slot, color_by = displacement: relative displacement / (ΔS h0), or
+    /// normalised per frame with per_frame_scale; null: no previous output
+    /// (the first snapshot), every disc drawn at 0.
+    const std::vector<double>* displacement = nullptr;
+    double S = 0;  // written in the panel's corner
+};
+
+/// Pixel size and legend of a written picture.
+struct PictureInfo {
+    int width_px = 0, height_px = 0;
+    Legend legend;
+};
+
+/// The pixel size of a picture of n panels drawn with o.
+PictureInfo picture_size(const ViewOptions& o, std::size_t panels);
+
+/// Where panel k of n lies in the picture: its plot area's left and top
+/// edges, width and height [px], and the scale [px per m] (the same in x and
+/// y): a point (x, y) [m] is drawn at (left + (x − x_min) scale, top +
+/// (y_max − y) scale).
+struct PlotArea {
+    double left = 0, top = 0, width = 0, height = 0, scale = 0;
+};
+PlotArea plot_area(const ViewOptions& o, std::size_t panels, std::size_t k);
+
+/// Draws the panels stacked top to bottom (as the paper's Figures 9 and 13),
+/// sharing the x axis (labelled under the last one), each with its S and the
+/// S point marked, under one header with o.title and the legend, into path
+/// (format from its extension: .png, .svg, .pdf), written atomically.
+PictureInfo render_panels(const std::vector<Panel>& panels, const ViewOptions& o, const std::string& path);
 
 /// Nearest-rank quantile q in (0, 1] of the positive entries of v (the value
 /// at rank ceil(q n) of the n positive entries in ascending order); 0 when
 /// no entry is positive. Independent of the order of v.
 double positive_quantile(const std::vector<double>& v, double q);
 
-/// scalar: per slot, used when color_by = "displacement" (may be null otherwise).
-void render_particles(const ParticleStore& p, const std::vector<double>* scalar, const ViewOptions& o,
-                      const std::string& path);
-
 /// The picture pair of one output, as `orodem run` writes it and `orodem
-/// render` writes it again: figures_dir/horizons_<name>.<ext> and, when rel
-/// is given (not for the first output, which has no previous one to move
-/// from), figures_dir/displacement_<name>.<ext>, labelled with the
-/// experiment and S. view gives the frame; its label and colouring are set
-/// here. Returns the number of pictures written.
-int render_picture_pair(const ParticleStore& p, const std::vector<double>* rel, ViewOptions view,
-                        const std::string& experiment, double S, const std::string& figures_dir,
-                        const std::string& name, const std::string& ext = "png");
+/// render` writes it again: dir/horizons_<name>.<ext> and, when disp is given
+/// (not for the first output, which has no previous one to move from),
+/// dir/displacement_<name>.<ext>. view gives the frame; its colouring is set
+/// here. Returns the pictures written.
+std::vector<PictureInfo> render_picture_pair(const ParticleStore& p, const std::vector<double>* disp, ViewOptions view,
+                                             double S, const std::string& dir, const std::string& name,
+                                             const std::string& ext = "png");
 
 }  // namespace orodem

@@ -135,12 +135,7 @@ WedgeRun::WedgeRun(const Config& c, WedgeSetup& w, const std::string& dir, RunLo
     make_dirs(dir_ + "/figures");
     make_dirs(dir_ + "/snapshots");
     if (!resumed_) st_.x_then = positions_by_id(sim_.particles);
-    view_.x_min = w_.profile.x_min;
-    view_.x_max = w_.profile.x_max;
-    view_.y_min = 0.0;
-    view_.y_max = 4.0 * h0_;
-    view_.h0 = h0_;
-    view_.band = h0_ / 5.0;
+    view_ = run_view(config_basics(c_));  // the frame of every picture of the run
 }
 
 void WedgeRun::start_from_layer() {
@@ -309,15 +304,21 @@ void WedgeRun::measure_structures() {
 // The snapshot (with the strain arrays of measure_structures) and its
 // picture pair.
 void WedgeRun::draw() {
-    const std::vector<double> rel = relative_displacement(sim_, st_.x_then);
+    const std::vector<double> rel_m = relative_displacement_m(sim_, st_.x_then);
+    const std::vector<double> rel = normalised(rel_m);
+    // The pictures' displacement: per unit convergence over the interval,
+    // one colour scale for every frame (render/particle_view.hpp).
+    const double interval = st_.pvd.empty() ? 0.0 : (S() - st_.pvd.back().first) * h0_;  // [m]
+    std::vector<double> disp(rel_m.size(), 0.0);
+    if (interval > 0.0)
+        for (std::size_t s = 0; s < disp.size(); ++s) disp[s] = rel_m[s] / interval;
     st_.x_then = positions_by_id(sim_.particles);
     const std::string name = fmt::format("S{:06.3f}", S());
     const VtuStamp stamp{S(), sim_.step_count, sim_.time};
-    write_vtu(fmt::format("{}/snapshots/{}.vtu", dir_, name), sim_.particles, rel, &stamp, &strain_);
+    write_vtu(fmt::format("{}/snapshots/{}.vtu", dir_, name), sim_.particles, rel, &stamp, &strain_, &rel_m);
     st_.pvd.emplace_back(S(), fmt::format("snapshots/{}.vtu", name));
     write_pvd(dir_ + "/run.pvd", st_.pvd);
-    render_picture_pair(sim_.particles, sim_.step_count > 0 ? &rel : nullptr, view_, c_.run.experiment, S(),
-                        dir_ + "/figures", name);
+    render_picture_pair(sim_.particles, sim_.step_count > 0 ? &disp : nullptr, view_, S(), dir_ + "/figures", name);
 }
 
 // The paper's plates are infinite slabs ([40]): once the raised surface runs

@@ -1,0 +1,201 @@
+#include "orodem/render/run_figures.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <cstdlib>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "orodem/core/error.hpp"
+#include "orodem/io/files.hpp"
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+namespace orodem {
+
+SavedRun open_saved_run(const std::string& dir) {
+    SavedRun r;
+    r.dir = dir;
+    r.config = read_config_basics((fs::path(dir) / "config.toml").string());
+    r.snaps = read_pvd((fs::path(dir) / "run.pvd").string());
+    return r;
+}
+
+Frame read_frame(const SavedRun& run, std::size_t k) {
+    const std::string vtu = (fs::path(run.dir) / run.snaps[k].file).string();
+    const VtuData d = read_vtu(vtu);
+    const auto& radius = d.require("radius", vtu);
+    const auto& depth = d.require("initial_depth", vtu);
+    const auto& side = d.require("side", vtu);
+    Frame f;
+    f.S = run.snaps[k].S;
+    for (std::size_t i = 0; i < d.x.size(); ++i) {
+        const std::size_t s = f.p.add(d.x[i], radius[i], 1.0);
+        f.p.initial_depth[s] = depth[i];
+        f.p.side[s] = side[i] != 0 ? 1 : 0;
+    }
+    if (f.p.size() == 0) throw IoError(fmt::format("'{}': snapshot holds no discs", vtu));
+    if (k == 0) return f;  // no previous output to move from
+    // Slots follow file order (p.add), so the arrays apply as they are.
+    if (const auto* abs = d.find("rel_disp_abs")) {
+        const double interval = (run.snaps[k].S - run.snaps[k - 1].S) * run.config.h0;  // [m]
+        f.displacement.assign(abs->size(), 0.0);
+        if (interval > 0.0)
+            for (std::size_t i = 0; i < abs->size(); ++i) f.displacement[i] = (*abs)[i] / interval;
+    } else {
+        f.displacement = d.require("rel_disp", vtu);
+        f.per_frame_scale = true;
+    }
+    return f;
+}
+
+std::vector<std::size_t> nearest_snapshots(const std::vector<Snapshot>& snaps, const std::vector<double>& at) {
+    std::vector<std::size_t> chosen;
+    for (double S : at) {
+        std::size_t best = 0;
+        for (std::size_t k = 1; k < snaps.size(); ++k)
+            if (std::fabs(snaps[k].S - S) < std::fabs(snaps[best].S - S)) best = k;
+        chosen.push_back(best);
+    }
+    std::sort(chosen.begin(), chosen.end());
+    chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+    return chosen;
+}
+
+PictureInfo render_run_figure(const SavedRun& run, const std::vector<std::size_t>& chosen, const std::string& color_by,
+                              int width_px, const std::string& out) {
+    std::vector<Frame> frames;
+    for (std::size_t k : chosen) frames.push_back(read_frame(run, k));
+    ViewOptions view = run_view(run.config, width_px);
+    view.color_by = color_by;
+    std::vector<Panel> panels;
+    for (const Frame& f : frames) {
+        view.per_frame_scale = view.per_frame_scale || f.per_frame_scale;
+        panels.push_back({&f.p, f.displacement.empty() ? nullptr : &f.displacement, f.S});
+    }
+    return render_panels(panels, view, out);
+}
+
+std::string find_on_path(const std::string& name) {
+    const char* path = std::getenv("PATH");
+    std::string dirs = path ? path : "";
+    std::size_t start = 0;
+    while (start <= dirs.size()) {
+        const std::size_t end = std::min(dirs.find(':', start), dirs.size());
+        const std::string dir = dirs.substr(start, end - start);
+        if (!dir.empty()) {
+            const std::string candidate = dir + "/" + name;
+            if (::access(candidate.c_str(), X_OK) == 0 && !fs::is_directory(candidate)) return candidate;
+        }
+        start = end + 1;
+    }
+    return "";
+}
+
+std::string movie_format(const std::string& path) {
+    const auto dot = path.rfind('.');
+    const std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+    if (ext != "mp4" && ext != "gif")
+        throw ConfigError(fmt::format("'{}': the movie format follows the extension, which must be .mp4 or .gif", path));
+    return ext;
+}
+
+namespace {
+
+/// Removes its folder (and what is in it) when it goes out of scope.
+struct TempDir {
+    std::string path;
+    ~TempDir() {
+        std::error_code ec;
+        if (!path.empty()) fs::remove_all(path, ec);
+    }
+};
+
+/// The last non-empty line of a text file ("" when none or unreadable).
+std::string last_line(const std::string& path) {
+    std::string text;
+    try {
+        text = read_file(path);
+    } catch (const IoError&) {
+        return "";
+    }
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+    const auto nl = text.rfind('\n');
+    return nl == std::string::npos ? text : text.substr(nl + 1);
+}
+
+/// Runs argv[0] (a full path) with stdin from /dev/null and stdout and
+/// stderr into log; returns its exit status (-1: killed by a signal).
+int run_child(const std::vector<std::string>& args, const std::string& log) {
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
+    std::vector<std::string> copy = args;
+    std::vector<char*> argv;
+    for (auto& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = -1;
+    const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&fa);
+    if (rc != 0) throw IoError(fmt::format("cannot start '{}': {}", args[0], std::strerror(rc)));
+    int st = 0;
+    while (::waitpid(pid, &st, 0) < 0)
+        if (errno != EINTR) throw IoError(fmt::format("waiting for '{}': {}", args[0], std::strerror(errno)));
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+}  // namespace
+
+std::size_t render_run_movie(const SavedRun& run, const MovieOptions& o, const std::string& out) {
+    const std::string format = movie_format(out);
+    const std::string ffmpeg = find_on_path("ffmpeg");
+    if (ffmpeg.empty())
+        throw MissingToolError("orodem movie needs ffmpeg, which is not on PATH; install it "
+                               "(Debian: apt-get install ffmpeg; scripts/install-deps does)");
+    const fs::path target = fs::absolute(out);
+    make_dirs(target.parent_path().string());
+    TempDir tmp;
+    std::string templ = (target.parent_path() / ".orodem-movie-XXXXXX").string();
+    if (!::mkdtemp(templ.data())) throw_io_error("cannot make a temporary folder", templ);
+    tmp.path = templ;
+
+    ViewOptions view = run_view(run.config, o.width_px);
+    view.color_by = o.color_by;
+    for (std::size_t k = 0; k < run.snaps.size(); ++k) {
+        const Frame f = read_frame(run, k);
+        ViewOptions v = view;
+        v.per_frame_scale = f.per_frame_scale;
+        render_panels({{&f.p, f.displacement.empty() ? nullptr : &f.displacement, f.S}}, v,
+                      fmt::format("{}/frame{:05d}.png", tmp.path, k));
+    }
+    const std::string encoded = tmp.path + "/movie." + format, log = tmp.path + "/ffmpeg.log";
+    std::vector<std::string> args = {ffmpeg, "-nostdin", "-hide_banner", "-loglevel", "error", "-y",
+                                     "-framerate", fmt::format("{:g}", o.fps), "-i", tmp.path + "/frame%05d.png"};
+    if (format == "gif") {
+        args.insert(args.end(), {"-vf", "split[a][b];[a]palettegen[p];[b][p]paletteuse", "-f", "gif"});
+    } else {  // H.264 wants even sizes and 4:2:0 chroma for common players
+        args.insert(args.end(), {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white", "-pix_fmt", "yuv420p",
+                                 "-movflags", "+faststart", "-f", "mp4"});
+    }
+    args.push_back(encoded);
+    const int rc = run_child(args, log);
+    if (rc != 0 || !fs::exists(encoded))
+        throw IoError(fmt::format("ffmpeg could not make '{}' (exit status {}): {}", out, rc, last_line(log)));
+    std::error_code ec;
+    fs::rename(encoded, target, ec);
+    if (ec) throw IoError(fmt::format("cannot move the movie into place as '{}': {}", out, ec.message()));
+    return run.snaps.size();
+}
+
+}  // namespace orodem

@@ -1,0 +1,66 @@
+// Pictures of a saved run (`orodem render`, `orodem movie`): its snapshots
+// (run.pvd) read back as frames and drawn in the run's own frame
+// (run_view of its config.toml), so they match the pictures the run wrote.
+//
+// The movie: every snapshot drawn as a PNG (the run's picture size) into a
+// temporary folder beside the output, then encoded by ffmpeg (Debian's
+// package, found on PATH; MissingToolError when absent) into a temporary
+// file in that folder, renamed into place; the folder is removed whatever
+// happens. ffmpeg runs as a child process (posix_spawnp) with its messages
+// in a log file there; when it fails, the error quotes the log's last line.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "orodem/io/config.hpp"
+#include "orodem/io/vtu_writer.hpp"
+#include "orodem/render/particle_view.hpp"
+#include "orodem/state/particles.hpp"
+
+namespace orodem {
+
+/// A run directory's config basics and snapshot list.
+struct SavedRun {
+    std::string dir;
+    ConfigBasics config;
+    std::vector<Snapshot> snaps;
+};
+/// Reads RUN_DIR/config.toml (leniently) and RUN_DIR/run.pvd.
+SavedRun open_saved_run(const std::string& dir);
+
+/// One snapshot ready to draw.
+struct Frame {
+    ParticleStore p;
+    std::vector<double> displacement;  // per slot, see Panel::displacement; empty: none (first snapshot)
+    bool per_frame_scale = false;      // the snapshot has only the normalised rel_disp (older orodem)
+    double S = 0;
+};
+/// Snapshot k of the run: rel_disp_abs / ((S_k − S_{k−1}) h0) as the displacement.
+Frame read_frame(const SavedRun& run, std::size_t k);
+
+/// Indices of the snapshots nearest each S of `at`, ascending, without repeats.
+std::vector<std::size_t> nearest_snapshots(const std::vector<Snapshot>& snaps, const std::vector<double>& at);
+
+/// The stacked figure (render_panels) of the chosen snapshots into out.
+PictureInfo render_run_figure(const SavedRun& run, const std::vector<std::size_t>& chosen, const std::string& color_by,
+                              int width_px, const std::string& out);
+
+/// The full path of an executable `name` on PATH; "" when there is none.
+std::string find_on_path(const std::string& name);
+
+struct MovieOptions {
+    std::string color_by = "horizons";  // horizons | displacement
+    int width_px = 1600;                // frame width [px] (ffmpeg pads to even sizes)
+    double fps = 4.0;                   // frames (snapshots) per second [1/s]
+};
+/// An animation of every snapshot of the run into out (.mp4: H.264; .gif);
+/// returns the number of frames. MissingToolError when ffmpeg is not on
+/// PATH (checked before anything is drawn), IoError when it fails.
+std::size_t render_run_movie(const SavedRun& run, const MovieOptions& o, const std::string& out);
+
+/// The movie format of a path: "mp4" or "gif"; ConfigError otherwise.
+std::string movie_format(const std::string& path);
+
+}  // namespace orodem

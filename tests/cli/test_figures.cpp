@@ -1,0 +1,207 @@
+// Figures and movies of a run (render/particle_view, render/run_figures;
+// `orodem render`, `orodem movie`) on a real tiny exp1 (three snapshots):
+// every picture of the run has one size and one legend (the numbers of its
+// colour bar compared, not pixels), render draws the run's frames at the
+// run's size, stacks snapshots into one PNG, SVG (text as <text>) or PDF,
+// never replaces a file without --force, and the movie is made by ffmpeg
+// (skipped with a message where ffmpeg is not installed) or refused with
+// exit status 6 when ffmpeg is missing.
+#include <gtest/gtest.h>
+
+#include "cli/cli_util.hpp"
+
+#include <cairo.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "orodem/render/particle_view.hpp"
+#include "orodem/render/run_figures.hpp"
+
+namespace fs = std::filesystem;
+using namespace cli;
+
+namespace {
+
+struct PngSize {
+    int width = 0, height = 0;
+};
+PngSize png_size(const fs::path& p) {
+    cairo_surface_t* s = cairo_image_surface_create_from_png(p.c_str());
+    PngSize out;
+    if (cairo_surface_status(s) == CAIRO_STATUS_SUCCESS)
+        out = {cairo_image_surface_get_width(s), cairo_image_surface_get_height(s)};
+    cairo_surface_destroy(s);
+    return out;
+}
+
+class Figures : public OrodemTest {
+protected:
+    /// The tiny exp1 in work_/r: snapshots at S = 0, 0.25, 0.5.
+    fs::path make_run() {
+        write_tiny_exp1(work_);
+        const Result r = orodem("run tiny.toml --out r --threads 1");
+        EXPECT_EQ(r.status, 0) << r.err;
+        return work_ / "r";
+    }
+};
+
+}  // namespace
+
+TEST_F(Figures, FramesOfARunShareSizeAndColourScale) {
+    const fs::path run = make_run();
+    // The run's own pictures: one size for all.
+    const PngSize first = png_size(run / "figures" / "horizons_S00.000.png");
+    ASSERT_GT(first.width, 0);
+    for (const char* f : {"horizons_S00.250.png", "horizons_S00.500.png", "displacement_S00.250.png",
+                          "displacement_S00.500.png"}) {
+        const PngSize s = png_size(run / "figures" / f);
+        EXPECT_EQ(s.width, first.width) << f;
+        EXPECT_EQ(s.height, first.height) << f;
+    }
+    // Two frames drawn again from the snapshots: the run's size, and the same
+    // colour bar (values, ticks, title) in both.
+    const orodem::SavedRun saved = orodem::open_saved_run(run.string());
+    ASSERT_EQ(saved.snaps.size(), 3u);
+    std::vector<std::vector<orodem::PictureInfo>> infos;
+    for (std::size_t k : {1u, 2u}) {
+        const orodem::Frame f = orodem::read_frame(saved, k);
+        EXPECT_FALSE(f.per_frame_scale);  // the snapshot has rel_disp_abs
+        ASSERT_EQ(f.displacement.size(), f.p.size());
+        for (double v : f.displacement) EXPECT_TRUE(std::isfinite(v) && v >= 0.0);
+        const fs::path dir = work_ / ("again" + std::to_string(k));
+        fs::create_directories(dir);
+        infos.push_back(orodem::render_picture_pair(f.p, &f.displacement, orodem::run_view(saved.config), f.S,
+                                                    dir.string(), "x"));
+        ASSERT_EQ(infos.back().size(), 2u);
+        EXPECT_EQ(png_size(dir / "displacement_x.png").width, first.width);
+        EXPECT_EQ(png_size(dir / "displacement_x.png").height, first.height);
+    }
+    const orodem::PictureInfo &a = infos[0][1], &b = infos[1][1];
+    EXPECT_EQ(a.width_px, b.width_px);
+    EXPECT_EQ(a.height_px, b.height_px);
+    EXPECT_EQ(a.width_px, first.width);
+    EXPECT_EQ(a.height_px, first.height);
+    EXPECT_EQ(a.legend.lo, 0.0);
+    EXPECT_EQ(a.legend.hi, orodem::kDisplacementFull);
+    EXPECT_EQ(a.legend.lo, b.legend.lo);
+    EXPECT_EQ(a.legend.hi, b.legend.hi);
+    EXPECT_EQ(a.legend.ticks, b.legend.ticks);
+    EXPECT_EQ(a.legend.title, b.legend.title);
+    EXPECT_HAS(a.legend.title, "ΔS h0");
+    // The horizon pictures: one legend too.
+    EXPECT_EQ(infos[0][0].legend.title, infos[1][0].legend.title);
+    EXPECT_EQ(infos[0][0].legend.swatches.size(), 4u);
+}
+
+TEST_F(Figures, RenderStacksSnapshotsIntoOneFigure) {
+    const fs::path run = make_run();
+    const orodem::ViewOptions view = orodem::run_view(orodem::open_saved_run(run.string()).config);
+    Result r = orodem("render r --at 0.25,0.5 --out fig.png");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_HAS(r.out, "2 panels (S = 0.25, 0.50)");
+    const PngSize png = png_size(work_ / "fig.png");
+    EXPECT_EQ(png.width, 1600);
+    EXPECT_EQ(png.height, orodem::picture_size(view, 2).height_px);
+    // SVG: the labels are editable text.
+    r = orodem("render r --at 0,0.25,0.5 --out out/fig.svg --color-by displacement");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string svg = slurp(work_ / "out" / "fig.svg");
+    for (const char* s : {"<svg", ">S = 0.00</text>", ">S = 0.25</text>", ">S = 0.50</text>",
+                          ">x / h0 (S point at 0)</text>", ">exp1</text>", "h0)</text>"})
+        EXPECT_HAS(svg, s);
+    // PDF.
+    r = orodem("render r --at 1,2,3 --out fig.pdf");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(slurp(work_ / "fig.pdf").substr(0, 5), "%PDF-");
+    EXPECT_HAS(r.out, "1 panels (S = 0.50)");  // all three nearest the last snapshot
+    // No --at: four evenly spread up to the last (here the nearest of 0.125,
+    // 0.25, 0.375, 0.5: three distinct snapshots).
+    r = orodem("render r --out four.png");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(png_size(work_ / "four.png").height, orodem::picture_size(view, 3).height_px);
+}
+
+TEST_F(Figures, RenderNeverReplacesFilesUnlessForced) {
+    const fs::path run = make_run();
+    const std::string own = slurp(run / "figures" / "horizons_S00.500.png");
+    ASSERT_EQ(orodem("render r --at 0.5 --out fig.png").status, 0);
+    write(work_ / "fig.png", "mine");
+    Result r = orodem("render r --at 0.5 --out fig.png");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_HAS(r.err, "fig.png");
+    EXPECT_HAS(r.err, "--force");
+    EXPECT_EQ(slurp(work_ / "fig.png"), "mine");
+    r = orodem("render r --at 0.5 --out fig.png --force");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(slurp(work_ / "fig.png"), "mine");
+    // Per-snapshot pictures go to figures/rendered/, not over the run's own.
+    r = orodem("render r");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_HAS(r.out, "5 pictures of 3 snapshots");
+    EXPECT_TRUE(fs::exists(run / "figures" / "rendered" / "displacement_S00.500.png"));
+    EXPECT_EQ(png_size(run / "figures" / "rendered" / "horizons_S00.500.png").height,
+              png_size(run / "figures" / "horizons_S00.500.png").height);
+    EXPECT_EQ(slurp(run / "figures" / "horizons_S00.500.png"), own);
+    // Again: they exist now.
+    r = orodem("render r --at 0.25");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_HAS(r.err, "horizons_S00.250.png");
+    EXPECT_HAS(r.err, "1 more");
+    EXPECT_EQ(orodem("render r --at 0.25 --force").status, 0);
+    // Bad requests: exit 2, one line, nothing written.
+    r = orodem("render r --out fig.jpg");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_HAS(r.err, ".svg");
+    EXPECT_FALSE(fs::exists(work_ / "fig.jpg"));
+    EXPECT_EQ(orodem("render r --color-by displacement").status, 2);  // only with --out
+    EXPECT_EQ(orodem("render r --out a.png --format svg").status, 2);
+    EXPECT_EQ(orodem("render r --out a.png --color-by strain").status, 2);
+}
+
+TEST_F(Figures, MovieNeedsFfmpegAndMakesTheAnimation) {
+    make_run();
+    // Without ffmpeg on PATH: one line naming it, exit 6, nothing written.
+    Result r = [&] {
+        const std::string cmd = "cd " + quote(work_.string()) + " && PATH=/nonexistent " + quote(ORODEM_EXE) +
+                                " movie r --out none.mp4 2>" + quote((capture_ / "e").string());
+        const int raw = std::system(cmd.c_str());
+        Result x;
+        x.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+        x.err = slurp(capture_ / "e");
+        return x;
+    }();
+    EXPECT_EQ(r.status, 6);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_HAS(r.err, "ffmpeg");
+    EXPECT_FALSE(fs::exists(work_ / "none.mp4"));
+    // Bad extension: exit 2.
+    r = orodem("movie r --out run.avi");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_HAS(r.err, ".mp4");
+    if (orodem::find_on_path("ffmpeg").empty())
+        GTEST_SKIP() << "ffmpeg is not installed here (scripts/install-deps installs it): the movie itself is not tested";
+    r = orodem("movie r --out run.mp4");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_HAS(r.out, "3 frames");
+    const std::string mp4 = slurp(work_ / "run.mp4");
+    ASSERT_GT(mp4.size(), 100u);
+    EXPECT_EQ(mp4.substr(4, 4), "ftyp");
+    r = orodem("movie r --out sub/run.gif --color-by displacement --fps 2 --width 640");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(slurp(work_ / "sub" / "run.gif").substr(0, 4), "GIF8");
+    // No temporary folder left beside them.
+    for (const auto& e : fs::directory_iterator(work_))
+        EXPECT_EQ(e.path().filename().string().find(".orodem-movie"), std::string::npos) << e.path();
+    // An existing movie is kept unless --force.
+    r = orodem("movie r --out run.mp4");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_EQ(slurp(work_ / "run.mp4"), mp4);
+    EXPECT_EQ(orodem("movie r --out run.mp4 --force").status, 0);
+}

@@ -69,6 +69,9 @@ int cmd_movie(const MovieArgs& a);
 /// orodem measure (cmd_measure.cpp): the wedge measures of each saved snapshot
 /// of a wedge run, taken again, as CSV on standard output.
 int cmd_measure(const std::string& run_dir);
+/// orodem faults (cmd_faults.cpp): the fault table of a run at one output
+/// (at: its S, NaN for the last), or every output as CSV.
+int cmd_faults(const std::string& run_dir, double at, bool csv, bool recompute);
 
 /// orodem taper (cmd_taper.cpp): the critical surface slopes of a dry noncohesive
 /// wedge (Dahlen 1984); exactly one of phi_b_deg and mu_b is given, the other is NaN.

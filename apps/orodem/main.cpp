@@ -133,6 +133,19 @@ int main(int argc, char** argv) {
                                                   "run, taken again, as CSV on standard output; writes nothing");
     measure->add_option("run_dir", measure_dir, "Run directory")->required();
 
+    std::string faults_dir;
+    double faults_at_S = std::nan("");
+    bool faults_csv = false, faults_recompute = false;
+    auto* faults = app.add_subcommand("faults", "The faults of a wedge run at one output (the last, or the one "
+                                                "nearest --at): stage, active pro- and retro-vergent faults, frontal "
+                                                "thrust, and each fault's dip, root, tip, width and slip; writes nothing");
+    faults->add_option("run_dir", faults_dir, "Run directory")->required();
+    faults->add_option("--at", faults_at_S, "Normalised convergence S of the output (the nearest one)")
+        ->check(CLI::Range(0.0, 1e9));
+    faults->add_flag("--csv", faults_csv, "Every output, in the format of faults.csv");
+    faults->add_flag("--recompute", faults_recompute,
+                     "Compute the table from the snapshots even where the run has a faults.csv");
+
     double taper_phi = 0.0, taper_phib = std::nan(""), taper_mu_b = std::nan(""), taper_beta = 0.0;
     auto* taper = app.add_subcommand("taper", "Critical surface slopes of a dry noncohesive Coulomb wedge "
                                               "(exact solution of Dahlen 1984, both branches)");
@@ -195,6 +208,7 @@ int main(int argc, char** argv) {
         if (*render) return cmd_render(ra);
         if (*movie) return cmd_movie(ma);
         if (*measure) return cmd_measure(measure_dir);
+        if (*faults) return cmd_faults(faults_dir, faults_at_S, faults_csv, faults_recompute);
         if (*taper) return cmd_taper(taper_phi, taper_phib, taper_mu_b, taper_beta);
         if (*pile) return cmd_bench_pile(pile_file, pile_steps, pile_threads);
     } catch (const ConfigError& e) {

@@ -107,6 +107,7 @@ inline std::vector<std::string> names_in(const fs::path& dir) {
 /// series.csv, run.pvd, every snapshot and every snapshot picture byte for byte.
 inline void expect_same_outputs(const fs::path& a, const fs::path& b) {
     EXPECT_EQ(slurp(b / "series.csv"), slurp(a / "series.csv")) << b;
+    EXPECT_EQ(slurp(b / "faults.csv"), slurp(a / "faults.csv")) << b;
     EXPECT_EQ(slurp(b / "run.pvd"), slurp(a / "run.pvd")) << b;
     ASSERT_EQ(names_in(b / "snapshots"), names_in(a / "snapshots")) << b;
     for (const auto& n : names_in(a / "snapshots"))

@@ -183,6 +183,37 @@ TEST_F(Resume, ASecondSignalIsIgnoredUntilTheShutdownCheckpointIsWritten) {
 // passed the rate and the time left (whether a second has passed depends on
 // the machine, so the rate is checked only where it is printed); no carriage
 // returns or escape codes.
+// orodem faults reads the run's faults.csv, computes the same table from the
+// snapshots alone (as for a run made before the table existed), and prints
+// one output's table; a run directory without config.toml is refused.
+TEST_F(Resume, FaultsPrintsTheTableAndComputesTheSameOneFromTheSnapshots) {
+    int k = 0;
+    auto run_orodem = [&](const std::vector<std::string>& args) {
+        const Proc p = start(args, root_ / ("faults-" + std::to_string(++k)));
+        Result r;
+        r.status = wait_for(p);
+        r.out = slurp(p.out);
+        r.err = slurp(p.err);
+        return r;
+    };
+    const std::string table = slurp(reference_ / "faults.csv");
+    ASSERT_EQ(table.rfind("S,id,vergence,dip_deg,root_x_over_h0,", 0), 0u) << table;
+    const Result csv = run_orodem({"faults", reference_.string(), "--csv"});
+    ASSERT_EQ(csv.status, 0) << csv.err;
+    EXPECT_EQ(csv.out, table);
+    const Result again = run_orodem({"faults", reference_.string(), "--csv", "--recompute"});
+    ASSERT_EQ(again.status, 0) << again.err;
+    EXPECT_EQ(again.out, table);
+    const Result at = run_orodem({"faults", reference_.string(), "--at", "0.3"});
+    ASSERT_EQ(at.status, 0) << at.err;
+    EXPECT_HAS(at.out, "at S = 0.300\nstage ");
+    EXPECT_HAS(at.out, "pro-vergent");
+    fs::create_directories(root_ / "not-a-run");
+    const Result bad = run_orodem({"faults", (root_ / "not-a-run").string()});
+    EXPECT_EQ(bad.status, 2) << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+}
+
 TEST_F(Resume, OffATerminalProgressIsOnePlainLinePerOutput) {
     const std::string out = slurp(root_ / "A.out");
     EXPECT_EQ(out.find('\r'), std::string::npos) << out;

@@ -103,7 +103,8 @@ struct CalibrateConfig {
     double belt_speed = 0.1;               // belt speed v' [m/s] (eq. 6 checked for the traction law)
     std::string base_law = "coulomb";      // coulomb | traction, as wedge.base_law
     double traction_gain = 1.0;            // traction only: g_b in the eq. 5 traction γ_b = g_b m_i / dt [-]
-    double duration = 10.0;                // belt running time [s]
+    double belt_travel = 8.0;              // belt displacement of the run [m] (duration = belt_travel / belt_speed)
+    double duration = 0.0;                 // belt running time [s]; 0: belt_travel / belt_speed
     double measure_from = 0.5;             // the measurement averages over t in [measure_from · duration, duration] [-]
     // repose: a column released by lifting its side walls onto a floor of fixed discs
     double column_width = 20.0;            // column width [m]

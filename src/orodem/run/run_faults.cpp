@@ -1,0 +1,94 @@
+#include "orodem/run/run_faults.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "orodem/analysis/strain.hpp"
+#include "orodem/core/error.hpp"
+#include "orodem/io/config.hpp"
+#include "orodem/io/vtu_writer.hpp"
+#include "orodem/run/run_dir.hpp"
+
+namespace fs = std::filesystem;
+
+namespace orodem {
+
+namespace {
+
+/// The positions of a snapshot by disc id (NaN for an id it lacks).
+std::vector<Vec2> positions_by_id(const std::string& vtu) {
+    const VtuData d = read_vtu(vtu);
+    const std::vector<double>& id = d.require("id", vtu);
+    std::size_t n = 0;
+    for (double v : id) n = std::max(n, static_cast<std::size_t>(v) + 1);
+    std::vector<Vec2> x(n, Vec2{std::nan(""), std::nan("")});
+    for (std::size_t k = 0; k < d.x.size(); ++k) x[static_cast<std::size_t>(id[k])] = d.x[k];
+    return x;
+}
+
+}  // namespace
+
+RunFaults run_faults(const std::string& dir, bool from_snapshots) {
+    require_run_dir(dir);
+    const fs::path d(dir);
+    RunFaults out;
+    const std::string csv = (d / "faults.csv").string();
+    if (!from_snapshots && fs::exists(csv)) {
+        out.rows = read_faults_csv(csv);
+        for (const FaultRow& r : out.rows)
+            if (out.outputs.empty() || out.outputs.back() != r.S) out.outputs.push_back(r.S);
+        if (out.outputs.empty()) {  // no fault found yet: the outputs are those of run.pvd
+            for (const Snapshot& s : read_pvd((d / "run.pvd").string())) out.outputs.push_back(s.S);
+        }
+        return out;
+    }
+    const Config c = load_config((d / "config.toml").string());
+    if (!is_wedge(c))
+        throw ConfigError(fmt::format("'{}' is a {} run, which has no wedge and no faults; faults takes a run of "
+                                      "exp1, exp2, exp3 or critical-wedge",
+                                      dir, c.run.experiment));
+    out.from_snapshots = true;
+    const double h0 = c.packing.h0, d_mean = c.packing.r_min + c.packing.r_max;
+    const FaultParams p = fault_params(d_mean, h0);
+    FaultTracker tracker;
+    std::vector<Vec2> x_then;
+    for (const Snapshot& s : read_pvd((d / "run.pvd").string())) {
+        std::vector<Vec2> x_now = positions_by_id((d / s.file).string());
+        std::vector<Fault> found;
+        if (!x_then.empty() && s.S > 0.0) {
+            const StrainField strain = local_strain(x_then, x_now, 2.0 * d_mean);
+            found = detect_faults(x_now, strain.shear, p).faults;
+        }
+        for (const Fault& f : tracker.update(std::move(found), s.S, h0)) {
+            FaultRow r;
+            r.S = s.S;
+            r.fault = f;
+            r.fault.root = (1.0 / h0) * f.root;
+            r.fault.tip = (1.0 / h0) * f.tip;
+            r.fault.length = f.length / h0;
+            r.fault.width = f.width / h0;
+            r.fault.slip = f.slip / h0;
+            out.rows.push_back(r);
+        }
+        out.outputs.push_back(s.S);
+        x_then = std::move(x_now);
+    }
+    return out;
+}
+
+std::vector<Fault> faults_at(const RunFaults& f, double S, double* S_out) {
+    if (f.outputs.empty()) throw IoError("the run has no output yet");
+    double best = f.outputs.front();
+    for (double s : f.outputs)
+        if (std::fabs(s - S) < std::fabs(best - S)) best = s;
+    if (S_out) *S_out = best;
+    std::vector<Fault> at;
+    for (const FaultRow& r : f.rows)
+        if (r.S == best) at.push_back(r.fault);
+    return at;
+}
+
+}  // namespace orodem

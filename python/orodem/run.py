@@ -70,9 +70,24 @@ def read_vtu(path):
     return out
 
 
+def read_faults(path):
+    """faults.csv as a dict of numpy arrays by column name: `vergence` as
+    strings ("pro" | "retro"), the other columns as floats."""
+    with open(path, newline="", encoding="utf-8") as f:
+        rows = list(csv.reader(f))
+    if not rows or rows[0][:3] != ["S", "id", "vergence"]:
+        raise ValueError(f"{path}: not an orodem faults.csv")
+    header, data = rows[0], rows[1:]
+    return {name: (np.array([r[k] for r in data]) if name == "vergence"
+                   else np.array([float(r[k]) for r in data], dtype=float))
+            for k, name in enumerate(header)}
+
+
 class Run:
     """One run directory. Attributes: path, config (dict), series (dict of
-    arrays; empty when series.csv is absent), outputs (list of S)."""
+    arrays; empty when series.csv is absent), outputs (list of S), faults
+    (dict of arrays from faults.csv, one row per known fault per output;
+    None when the run has no fault table)."""
 
     def __init__(self, path):
         self.path = os.fspath(path)
@@ -83,6 +98,8 @@ class Run:
             self.config = tomllib.load(f)
         series = os.path.join(self.path, "series.csv")
         self.series = read_series(series) if os.path.exists(series) else {}
+        faults = os.path.join(self.path, "faults.csv")
+        self.faults = read_faults(faults) if os.path.exists(faults) else None
         self._snapshots = self._read_pvd()
         self.outputs = [s for s, _ in self._snapshots]
 

@@ -58,6 +58,17 @@ def test_config_series_and_outputs(run_dir):
     assert r.outputs[-1] == pytest.approx(0.3, abs=1e-3)  # the last step reaches s_max to a step
 
 
+def test_faults_table(run_dir):
+    r = orodem.open_run(run_dir)
+    with open(run_dir / "faults.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert r.faults is not None and set(r.faults) == set(rows[0] if rows else r.faults)
+    assert len(r.faults["S"]) == len(rows)
+    for k, row in enumerate(rows):
+        assert r.faults["vergence"][k] == row["vergence"] in ("pro", "retro")
+        assert r.faults["dip_deg"][k] == float(row["dip_deg"])
+
+
 def test_snapshot_is_self_describing(run_dir):
     r = orodem.open_run(run_dir)
     for k, S in enumerate(r.outputs):

@@ -7,10 +7,12 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 
 #include "commands.hpp"
 #include "orodem/core/error.hpp"
+#include "orodem/engine/pair_kernel.hpp"
 
 using namespace orodem;
 
@@ -18,9 +20,18 @@ int main(int argc, char** argv) {
     // Whole lines as they are printed, also into a file or a pipe (a run
     // started with nohup shows "resuming ..." at once, not at its end).
     std::setvbuf(stdout, nullptr, _IOLBF, 0);
+    // The step kernels' instruction-set version, once for the process: the
+    // best the CPU runs, or the one ORODEM_ISA names (engine/pair_kernel.hpp).
+    KernelIsa isa = KernelIsa::sse2;
+    try {
+        isa = select_kernel_isa(std::getenv("ORODEM_ISA"));
+    } catch (const ConfigError& e) {
+        fmt::print(stderr, "orodem: error: {}\n", e.what());
+        return static_cast<int>(ExitCode::config);
+    }
     CLI::App app{"orodem: discrete element model of doubly vergent orogenic wedges (Naylor et al. 2005)"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", ORODEM_VERSION);
+    app.set_version_flag("--version", fmt::format("{} (step kernels: {})", ORODEM_VERSION, isa_name(isa)));
 
     CommonArgs run_args, check_args;
     std::string out;

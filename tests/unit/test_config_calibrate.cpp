@@ -64,6 +64,14 @@ TEST(ConfigCalibrate, DefaultsResolve) {
     ASSERT_EQ(b.calibrate.mu_bp_values.size(), 1u);
     EXPECT_DOUBLE_EQ(b.calibrate.mu_bp_values[0], 0.3);
     EXPECT_DOUBLE_EQ(b.calibrate.belt_speed, 0.1);
+    // The run is a belt travel (8 m): 80 s at 0.1 m/s, 320 s at 0.025 m/s,
+    // unless calibrate.duration is given.
+    EXPECT_DOUBLE_EQ(b.calibrate.duration, 80.0);
+    const Config slow = parse_config(head("basal-friction"), "calib.toml", {{"calibrate.belt_speed", "0.025"}});
+    EXPECT_DOUBLE_EQ(slow.calibrate.duration, 320.0);
+    const Config fixed = parse_config(head("basal-friction"), "calib.toml",
+                                      {{"calibrate.belt_speed", "0.025"}, {"calibrate.duration", "50.0"}});
+    EXPECT_DOUBLE_EQ(fixed.calibrate.duration, 50.0);
 }
 
 TEST(ConfigCalibrate, ListsAreRead) {
@@ -178,7 +186,8 @@ TEST(ConfigCalibrate, EveryBadValueIsRefusedNamingKeyAndWhatIsAllowed) {
         {"basal-friction", "base_law = \"traction\"\ntraction_gain = 2.0", "calibrate.traction_gain", "(0, 1.5]"},
         {"basal-friction", "traction_gain = 1.0", "calibrate.traction_gain", "applies to the eq. 5 traction only"},
         {"basal-friction", "base_law = \"viscous\"", "calibrate.base_law", "\"coulomb\", \"traction\""},
-        {"basal-friction", "duration = -1.0", "calibrate.duration", "> 0"},
+        {"basal-friction", "duration = -1.0", "calibrate.duration", ">= 0"},
+        {"basal-friction", "belt_travel = 0.0", "calibrate.belt_travel", "> 0"},
         {"basal-friction", "measure_from = 1.0", "calibrate.measure_from", "[0, 1)"},
         // repose
         {"repose", "column_width = 3.0", "calibrate.column_width", "at least 4 r_max"},

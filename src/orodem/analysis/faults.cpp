@@ -116,10 +116,14 @@ Vec2 end_of(const std::vector<Vec2>& x, std::vector<std::uint32_t> idx, bool top
 }
 
 /// The point of the zone's line at the height of `end` (the mean of its
-/// deepest or highest discs); `end` itself for a line within 10° of the
-/// horizontal, whose height does not fix a point.
-Vec2 on_line(const Axis& a, Vec2 end) {
-    if (std::fabs(a.dir.y) < std::sin(10.0 * kPi / 180.0)) return end;
+/// deepest or highest discs); for a line within 10° of the horizontal,
+/// whose height does not fix a point, the line's own end (two standard
+/// deviations from its centre) on the side of `end`.
+Vec2 on_line(const Axis& a, Vec2 end, bool upper) {
+    if (std::fabs(a.dir.y) < std::sin(10.0 * kPi / 180.0)) {
+        const Vec2 e1 = a.centre + 2.0 * a.sd_along * a.dir, e2 = a.centre - 2.0 * a.sd_along * a.dir;
+        return (e1.y > e2.y) == upper ? e1 : e2;
+    }
     return {a.centre.x + (end.y - a.centre.y) * a.dir.x / a.dir.y, end.y};
 }
 
@@ -204,8 +208,8 @@ FaultScan detect_faults(const std::vector<Vec2>& x, const std::vector<double>& s
             f.discs = static_cast<std::uint32_t>(idx.size());
             f.length = 4.0 * a.sd_along;
             f.width = 4.0 * a.sd_across;
-            f.root = on_line(a, end_of(x, idx, false));
-            f.tip = on_line(a, end_of(x, idx, true));
+            f.root = on_line(a, end_of(x, idx, false), false);
+            f.tip = on_line(a, end_of(x, idx, true), true);
             f.vergence = f.tip.x < f.root.x ? +1 : -1;
             // Dip at mid-depth: the axis of the middle half of the zone along
             // its own axis (a cut by depth would bias a wide zone toward the

@@ -25,7 +25,8 @@
 // their raw γ (the ridge of the strain, not the smoothed zone around it):
 // root = the point of the line at the mean height of the deepest tenth of
 // its discs, tip = at that of the highest tenth (for a line within 10° of
-// the horizontal, those means themselves); vergence from root to tip: a
+// the horizontal, the line's lower and higher ends, two standard deviations
+// from its centre); vergence from root to tip: a
 // fault rising toward the proside (−x, the incoming plate) is pro-vergent
 // (its hanging wall moves toward the proside), one rising toward +x
 // retro-vergent; dip = the line's angle, 0-90°, or, for a long fault whose

@@ -16,6 +16,12 @@
 // or the masses change, not every step (pair_dashpots).
 #include "orodem/engine/pair_kernel.hpp"
 
+#include <string_view>
+
+#include <fmt/format.h>
+
+#include "orodem/core/error.hpp"
+
 #include <cmath>
 
 #include "orodem/core/simd.hpp"
@@ -271,13 +277,108 @@ template <class Index>
     }
 }
 
-}  // namespace
-
-__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-void gather_range(const GatherData& dref, std::size_t begin, std::size_t end) {
+[[gnu::always_inline]] inline void gather_body(const GatherData& dref, std::size_t begin, std::size_t end) {
     const GatherData d = dref;
     for (std::size_t i = begin; i < end; ++i) gather_disc(d, i);
 }
+
+[[gnu::always_inline]] inline void pair_body(const PairKernelData& dref, std::size_t begin, std::size_t end) {
+    // A local copy: the kernel's stores (memcpy, may alias anything) then
+    // cannot force reloads of the column pointers.
+    const PairKernelData d = dref;
+    std::size_t k = begin;
+    for (; k + kLanes <= end; k += kLanes) eval_block(d, k);
+    if (k < end) eval_tail(d, k, end - k);
+}
+
+// The three builds of each kernel: the bodies above inlined into functions
+// compiled for each ISA (the always_inline helpers take the caller's ISA).
+void gather_sse2(const GatherData& d, std::size_t b, std::size_t e) { gather_body(d, b, e); }
+[[gnu::target("arch=x86-64-v3")]] void gather_avx2(const GatherData& d, std::size_t b, std::size_t e) {
+    gather_body(d, b, e);
+}
+[[gnu::target("arch=x86-64-v4")]] void gather_avx512(const GatherData& d, std::size_t b, std::size_t e) {
+    gather_body(d, b, e);
+}
+void pairs_sse2(const PairKernelData& d, std::size_t b, std::size_t e) { pair_body(d, b, e); }
+[[gnu::target("arch=x86-64-v3")]] void pairs_avx2(const PairKernelData& d, std::size_t b, std::size_t e) {
+    pair_body(d, b, e);
+}
+[[gnu::target("arch=x86-64-v4")]] void pairs_avx512(const PairKernelData& d, std::size_t b, std::size_t e) {
+    pair_body(d, b, e);
+}
+
+struct Kernels {
+    KernelIsa isa;
+    void (*gather)(const GatherData&, std::size_t, std::size_t);
+    void (*pairs)(const PairKernelData&, std::size_t, std::size_t);
+};
+constexpr Kernels kVersions[] = {{KernelIsa::sse2, gather_sse2, pairs_sse2},
+                                 {KernelIsa::avx2, gather_avx2, pairs_avx2},
+                                 {KernelIsa::avx512, gather_avx512, pairs_avx512}};
+
+bool cpu_runs(KernelIsa isa) {
+    __builtin_cpu_init();
+    switch (isa) {
+        case KernelIsa::sse2: return true;
+        case KernelIsa::avx2:  // x86-64-v3
+            return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+                   __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("movbe");
+        case KernelIsa::avx512:  // x86-64-v4
+            return cpu_runs(KernelIsa::avx2) && __builtin_cpu_supports("avx512f") &&
+                   __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512cd") &&
+                   __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl");
+    }
+    return false;
+}
+
+// The version in use: chosen before any thread runs a kernel (the first
+// kernel_isa() or select_kernel_isa(), from main), read-only afterwards.
+const Kernels* g_kernels = nullptr;
+
+const Kernels& kernels() {
+    if (!g_kernels) g_kernels = &kVersions[static_cast<int>(best_kernel_isa())];
+    return *g_kernels;
+}
+
+}  // namespace
+
+const char* isa_name(KernelIsa isa) {
+    switch (isa) {
+        case KernelIsa::sse2: return "sse2";
+        case KernelIsa::avx2: return "avx2";
+        case KernelIsa::avx512: return "avx512";
+    }
+    return "?";
+}
+
+KernelIsa best_kernel_isa() {
+    if (cpu_runs(KernelIsa::avx512)) return KernelIsa::avx512;
+    if (cpu_runs(KernelIsa::avx2)) return KernelIsa::avx2;
+    return KernelIsa::sse2;
+}
+
+KernelIsa select_kernel_isa(const char* requested) {
+    if (!requested || !*requested) {
+        g_kernels = &kVersions[static_cast<int>(best_kernel_isa())];
+        return g_kernels->isa;
+    }
+    for (const Kernels& k : kVersions) {
+        if (std::string_view(requested) != isa_name(k.isa)) continue;
+        if (!cpu_runs(k.isa))
+            throw ConfigError(fmt::format("ORODEM_ISA={}: this CPU lacks {}; it runs {}", requested, isa_name(k.isa),
+                                          cpu_runs(KernelIsa::avx2) ? "sse2 and avx2" : "sse2 only"));
+        g_kernels = &k;
+        return k.isa;
+    }
+    throw ConfigError(fmt::format("ORODEM_ISA={}: not a kernel version; allowed: sse2, avx2, avx512 (or unset: the "
+                                  "best the CPU runs)",
+                                  requested));
+}
+
+KernelIsa kernel_isa() { return kernels().isa; }
+
+void gather_range(const GatherData& d, std::size_t begin, std::size_t end) { kernels().gather(d, begin, end); }
 
 void pair_dashpots(const LawParams& law, const double* mass, const double* inv_mass, const std::uint32_t* i,
                    const std::uint32_t* j, std::size_t begin, std::size_t end, double* gamma_n, double* gamma_s) {
@@ -294,16 +395,6 @@ void pair_dashpots(const LawParams& law, const double* mass, const double* inv_m
     }
 }
 
-// Built for the baseline ISA and, chosen at load time by the CPU, for
-// x86-64-v3 (AVX2) and x86-64-v4 (AVX-512): the same operations, wider registers.
-__attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-void eval_pair_range(const PairKernelData& dref, std::size_t begin, std::size_t end) {
-    // A local copy: the kernel's stores (memcpy, may alias anything) then
-    // cannot force reloads of the column pointers.
-    const PairKernelData d = dref;
-    std::size_t k = begin;
-    for (; k + kLanes <= end; k += kLanes) eval_block(d, k);
-    if (k < end) eval_tail(d, k, end - k);
-}
+void eval_pair_range(const PairKernelData& d, std::size_t begin, std::size_t end) { kernels().pairs(d, begin, end); }
 
 }  // namespace orodem

@@ -10,9 +10,12 @@
 // forbids fused multiply-adds). Branches become selects: a lane computes
 // both sides and keeps the one the scalar code would take, so a pair's
 // result does not depend on its lane, its block or the ISA the kernel was
-// compiled for. The kernels are built for the baseline x86-64 ISA and, where
-// the CPU has them, for AVX2 and AVX-512 (function multiversioning; the same
-// results, wider registers). tests/unit/test_pair_kernel.cpp checks phase A
+// compiled for. The kernels are built three times, for the baseline x86-64
+// ISA (SSE2), x86-64-v3 (AVX2) and x86-64-v4 (AVX-512): the same operations
+// in wider registers. The version is chosen once per process
+// (select_kernel_isa): the best the CPU has, or the one ORODEM_ISA names, so
+// a test can run a config with each and compare the outputs byte for byte
+// (tests/cli/test_isa.cpp). tests/unit/test_pair_kernel.cpp checks phase A
 // against the per-pair loop bit for bit.
 //
 // Determinism: a pair writes only its own slots (f, c, ξ), a disc only its
@@ -62,6 +65,19 @@ struct PairKernelData {
 /// per pair less in phase A).
 void pair_dashpots(const LawParams& law, const double* mass, const double* inv_mass, const std::uint32_t* i,
                    const std::uint32_t* j, std::size_t begin, std::size_t end, double* gamma_n, double* gamma_s);
+
+/// The instruction-set versions of the kernels.
+enum class KernelIsa { sse2, avx2, avx512 };
+const char* isa_name(KernelIsa isa);  // "sse2" | "avx2" | "avx512"
+/// The best version this CPU runs.
+KernelIsa best_kernel_isa();
+/// Chooses the version for the rest of the process: `requested` ("sse2",
+/// "avx2", "avx512"; null or empty: the best), e.g. the environment's
+/// ORODEM_ISA. Returns the chosen one; a name that is not a version, or a
+/// version this CPU lacks, throws ConfigError naming what is allowed.
+KernelIsa select_kernel_isa(const char* requested);
+/// The version in use (the best until select_kernel_isa is called).
+KernelIsa kernel_isa();
 
 /// Evaluates pairs [begin, end): f[k], c[k] and (if update_history) ξ[k].
 void eval_pair_range(const PairKernelData& d, std::size_t begin, std::size_t end);

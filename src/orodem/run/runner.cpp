@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "orodem/engine/pair_kernel.hpp"
+
 #include "orodem/core/error.hpp"
 #include "orodem/io/checkpoint.hpp"
 #include "orodem/io/files.hpp"
@@ -84,7 +86,12 @@ ParticleStore prepare_layer(const Config& c, const std::string& dir, RunLog& log
     cut_layer(sim.particles, c.packing.h0);
     save_packing(cache, sim.particles, packing_key(c));
     log.line(fmt::format("cut to h0 = {:g} m: {} discs; cached in {}", c.packing.h0, sim.particles.size(), cache));
-    return std::move(sim.particles);
+    // The layer as the cache gives it back (what it keeps of each disc and
+    // nothing else: the settling's rotation angles are not kept), so that a
+    // run from a fresh layer and one from the cache are the same run, their
+    // checkpoints included.
+    if (auto reread = load_packing(cache, packing_key(c), c.material.density, &why)) return std::move(*reread);
+    throw IoError(fmt::format("the packing cache {} just written cannot be read back: {}", cache, why));
 }
 
 /// A WedgeRun, and when an I/O error (a full disk, a failed write) stops it,
@@ -146,8 +153,8 @@ int start_run_in(const Config& c, const RunNumbers& n, const std::string& dir, R
     EventRecord start;
     start.kind = RunEvent::start;
     start.dt = t.dt;
-    start.text = fmt::format("orodem {} run of {} ({}) with {} threads", ORODEM_VERSION, c.path, c.run.experiment,
-                             omp_get_max_threads());
+    start.text = fmt::format("orodem {} run of {} ({}) with {} threads, {} step kernels", ORODEM_VERSION, c.path,
+                             c.run.experiment, omp_get_max_threads(), isa_name(kernel_isa()));
     log.event(start);
     log.line(fmt::format("dt = {:.6g} s, stability limit {:.6g} s (margin {:.2f}x), t_c = {:.1f} steps",
                          t.dt, t.dt_crit, t.margin(), t.t_collision / t.dt));
@@ -256,8 +263,8 @@ int resume_run(const Config& c, const RunNumbers& n, const std::string& dir, Run
     e.kind = RunEvent::resume;
     e.step = w.sim.step_count;
     e.S = c.wedge.v * w.sim.time / c.packing.h0;
-    e.text = fmt::format("resumed by orodem {} from {} at step {} (S = {:.4f}) with {} threads", ORODEM_VERSION, path,
-                         w.sim.step_count, e.S, omp_get_max_threads());
+    e.text = fmt::format("resumed by orodem {} from {} at step {} (S = {:.4f}) with {} threads, {} step kernels",
+                         ORODEM_VERSION, path, w.sim.step_count, e.S, omp_get_max_threads(), isa_name(kernel_isa()));
     log.event(e);
     obs.note(fmt::format("resuming {} from step {} ({})", dir, w.sim.step_count, path));
     const int rc = run_wedge(c, w, dir, log, obs, &st);

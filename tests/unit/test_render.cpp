@@ -5,7 +5,9 @@
 // (with <text>) and PDF are written too; the displacement colours follow the
 // fixed scale (or the per-frame quantile for old snapshots); the legend is
 // the same whatever the data; a stack of panels shares one width; and
-// 30,000 discs render quickly (time printed only).
+// 30,000 discs render quickly (time printed only). Strain maps: each disc's
+// pixel is the log bar's colour of its γ, and the active faults are drawn
+// (and returned) as lines, pro-vergent solid blue, retro-vergent dashed green.
 #include <gtest/gtest.h>
 
 #include <cairo.h>

@@ -1,11 +1,13 @@
 // `orodem render RUN_DIR`: pictures from a run's saved snapshots (run.pvd),
 // in the run's own frame and colour scales (render/particle_view.hpp):
 // with --out FILE one figure stacking the snapshots nearest --at (as the
-// paper's Figures 9 and 13); without it the horizon and displacement
+// paper's Figures 9 and 13); without it the horizon, displacement and strain
 // picture of each snapshot into --dir (default RUN_DIR/figures/rendered/,
 // never the run's own figures/). An existing file is never replaced
 // without --force: every target is checked before anything is drawn.
 // `orodem movie RUN_DIR --out FILE.mp4|.gif`: every snapshot, animated by ffmpeg.
+// Strain maps carry the run's active faults, read from its fault table
+// (run/run_faults.hpp) here and handed to render/ as lines.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "orodem/io/files.hpp"
 #include "orodem/render/run_figures.hpp"
 #include "orodem/run/run_dir.hpp"
+#include "orodem/run/run_faults.hpp"
 
 #include "commands.hpp"
 
@@ -43,6 +46,12 @@ std::vector<double> default_stack(const std::vector<Snapshot>& snaps) {
     return {0.25 * last, 0.5 * last, 0.75 * last, last};
 }
 
+/// The fault lines of every snapshot of the run (faults.csv, or computed
+/// again from the snapshots for a run made before it).
+RunFaultLines fault_lines_of(const SavedRun& run) {
+    return run_fault_lines(run_faults(run.dir), run.snaps, run.config.h0);
+}
+
 }  // namespace
 
 int cmd_render(const RenderArgs& a) {
@@ -52,13 +61,20 @@ int cmd_render(const RenderArgs& a) {
         picture_format(a.out);  // exit 2 before anything else
         refuse_existing({a.out}, a.force, "render");
         const std::vector<std::size_t> chosen = nearest_snapshots(run.snaps, a.at.empty() ? default_stack(run.snaps) : a.at);
+        RunFaultLines faults;
+        if (is_strain(a.color_by)) {
+            for (std::size_t k : chosen) require_colour_data(run, k, a.color_by);  // exit 2, nothing written
+            faults = fault_lines_of(run);
+        }
         const fs::path parent = fs::absolute(a.out).parent_path();
         make_dirs(parent.string());
-        const PictureInfo info = render_run_figure(run, chosen, a.color_by, a.width, a.out);
+        const PictureInfo info = render_run_figure(run, chosen, a.color_by, a.width, a.out, &faults);
         std::string list;
         for (std::size_t k : chosen) list += fmt::format("{}{:.2f}", list.empty() ? "" : ", ", run.snaps[k].S);
-        fmt::print("render: {} panels (S = {}), {} x {} px, in {}\n", chosen.size(), list, info.width_px,
-                   info.height_px, a.out);
+        fmt::print("render: {} panels (S = {}), {} x {} px{}, in {}\n", chosen.size(), list, info.width_px,
+                   info.height_px,
+                   is_strain(a.color_by) ? fmt::format(", {} active faults drawn", info.faults_drawn.size()) : "",
+                   a.out);
         return 0;
     }
     std::vector<std::size_t> chosen;
@@ -67,24 +83,34 @@ int cmd_render(const RenderArgs& a) {
     else
         chosen = nearest_snapshots(run.snaps, a.at);
     const std::string dir = a.dir.empty() ? (fs::path(a.run_dir) / "figures" / "rendered").string() : a.dir;
+    // Strain maps for the snapshots that hold strain (not the first: no interval).
+    std::vector<bool> strain(run.snaps.size(), false);
+    std::size_t strain_maps = 0;
     std::vector<std::string> targets;
     for (std::size_t k : chosen) {
         const std::string name = fs::path(run.snaps[k].file).stem().string();
         targets.push_back(fmt::format("{}/horizons_{}.{}", dir, name, a.format));
-        if (k > 0) targets.push_back(fmt::format("{}/displacement_{}.{}", dir, name, a.format));
+        if (k == 0) continue;
+        targets.push_back(fmt::format("{}/displacement_{}.{}", dir, name, a.format));
+        strain[k] = has_colour_data(run, k, "strain");
+        if (strain[k]) targets.push_back(fmt::format("{}/strain_{}.{}", dir, name, a.format));
+        strain_maps += strain[k] ? 1 : 0;
     }
     refuse_existing(targets, a.force, "render");
+    const RunFaultLines faults = strain_maps > 0 ? fault_lines_of(run) : RunFaultLines{};
     make_dirs(dir);
     std::size_t pictures = 0;
     for (std::size_t k : chosen) {
         const Frame f = read_frame(run, k);
         ViewOptions view = run_view(run.config, a.width);
         view.per_frame_scale = f.per_frame_scale;
-        pictures += render_picture_pair(f.p, f.displacement.empty() ? nullptr : &f.displacement, view, f.S, dir,
-                                        fs::path(run.snaps[k].file).stem().string(), a.format)
-                        .size();
+        Panel panel = strain[k] ? frame_panel(f, "strain", &faults[k]) : frame_panel(f, "horizons", nullptr);
+        pictures += render_output_pictures(panel, view, dir, fs::path(run.snaps[k].file).stem().string(), a.format).size();
     }
-    fmt::print("render: {} pictures of {} snapshots in {}\n", pictures, chosen.size(), dir);
+    const std::size_t later = chosen.size() - (chosen.front() == 0 ? 1 : 0);  // snapshots with an interval
+    fmt::print("render: {} pictures of {} snapshots in {}{}\n", pictures, chosen.size(), dir,
+               strain_maps < later ? fmt::format(" ({} without strain arrays: no strain map)", later - strain_maps)
+                                   : "");
     return 0;
 }
 
@@ -97,6 +123,10 @@ int cmd_movie(const MovieArgs& a) {
     o.color_by = a.color_by;
     o.width_px = a.width;
     o.fps = a.fps;
+    if (is_strain(a.color_by)) {
+        require_colour_data(run, run.snaps.size() - 1, a.color_by);  // exit 2, nothing written
+        o.faults = fault_lines_of(run);
+    }
     const std::size_t frames = render_run_movie(run, o, a.out);
     fmt::print("movie: {} frames ({} per second) in {}\n", frames, a.fps, a.out);
     return 0;

@@ -44,13 +44,13 @@ struct RenderArgs {
     std::string out;                    // one stacked figure (.png, .svg, .pdf); empty: a picture pair per snapshot
     std::string dir;                    // the picture pairs' folder; empty: RUN_DIR/figures/rendered
     std::string format = "png";         // the picture pairs' format
-    std::string color_by = "horizons";  // the stacked figure's colouring: horizons | displacement
+    std::string color_by = "horizons";  // the stacked figure's colouring: horizons | displacement | strain | strain_total
     int width = 1600;                   // picture width [px]
     bool force = false;                 // replace existing files
 };
 /// orodem render (cmd_render.cpp): with `out`, one figure stacking the
 /// snapshots nearest each S of `at` (four evenly spread when empty); without,
-/// the horizon and displacement pictures of those snapshots (all when empty)
+/// the horizon, displacement and strain pictures of those snapshots (all when empty)
 /// into `dir`. Refuses (exit 2) to replace a file without `force`.
 int cmd_render(const RenderArgs& a);
 
@@ -58,7 +58,7 @@ int cmd_render(const RenderArgs& a);
 struct MovieArgs {
     std::string run_dir;
     std::string out;                    // .mp4 or .gif
-    std::string color_by = "horizons";  // horizons | displacement
+    std::string color_by = "horizons";  // horizons | displacement | strain | strain_total
     int width = 1600;                   // frame width [px]
     double fps = 4.0;                   // snapshots per second [1/s]
     bool force = false;                 // replace an existing file

@@ -104,15 +104,16 @@ int main(int argc, char** argv) {
     RenderArgs ra;
     auto* render = app.add_subcommand("render", "Pictures of a run's saved snapshots (run.pvd) in the run's frame and "
                                                 "colour scales: with --out FILE one figure stacking the snapshots "
-                                                "nearest --at (as the paper's Figures 9 and 13), else the horizon and "
-                                                "displacement picture of each snapshot into --dir");
+                                                "nearest --at (as the paper's Figures 9 and 13), else the horizon, "
+                                                "displacement and strain picture of each snapshot into --dir");
     render->add_option("run_dir", ra.run_dir, "Run directory")->required();
     render->add_option("--at", ra.at, "Shortenings S, e.g. --at 1,2.5: the snapshots nearest them (default: with "
                                       "--out four evenly spread up to the last, else all)")
         ->delimiter(',');
     auto* render_out = render->add_option("--out", ra.out, "One stacked figure, .png, .svg (text as <text>) or .pdf");
-    render->add_option("--color-by", ra.color_by, "The stacked figure's colouring")
-        ->check(CLI::IsMember({"horizons", "displacement"}))
+    render->add_option("--color-by", ra.color_by, "The stacked figure's colouring (strain: γ of the output "
+                                                   "interval, strain_total: since S = 0; both with the active faults)")
+        ->check(CLI::IsMember({"horizons", "displacement", "strain", "strain_total"}))
         ->needs(render_out)
         ->capture_default_str();
     render->add_option("--dir", ra.dir, "Folder of the per-snapshot pictures (default RUN_DIR/figures/rendered)")
@@ -132,7 +133,7 @@ int main(int argc, char** argv) {
     movie->add_option("run_dir", ma.run_dir, "Run directory")->required();
     movie->add_option("--out", ma.out, "Output file, .mp4 or .gif")->required();
     movie->add_option("--color-by", ma.color_by, "Colouring")
-        ->check(CLI::IsMember({"horizons", "displacement"}))
+        ->check(CLI::IsMember({"horizons", "displacement", "strain", "strain_total"}))
         ->capture_default_str();
     movie->add_option("--fps", ma.fps, "Frames (snapshots) per second")->check(CLI::Range(0.1, 60.0))->capture_default_str();
     movie->add_option("--width", ma.width, "Frame width in pixels")->check(CLI::Range(200, 8000))->capture_default_str();

@@ -5,7 +5,9 @@
 // run's size, stacks snapshots into one PNG, SVG (text as <text>) or PDF,
 // never replaces a file without --force, and the movie is made by ffmpeg
 // (skipped with a message where ffmpeg is not installed) or refused with
-// exit status 6 when ffmpeg is missing.
+// exit status 6 when ffmpeg is missing. Strain maps: a third picture per
+// output with the run's active faults (the lines drawn are those of its
+// fault table), one fixed log scale, stacked by render, animated by movie.
 #include <gtest/gtest.h>
 
 #include "cli/cli_util.hpp"
@@ -13,12 +15,15 @@
 #include <cairo.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "orodem/render/particle_view.hpp"
 #include "orodem/render/run_figures.hpp"
+#include "orodem/io/fault_table.hpp"
+#include "orodem/run/run_faults.hpp"
 
 namespace fs = std::filesystem;
 using namespace cli;
@@ -73,8 +78,8 @@ TEST_F(Figures, FramesOfARunShareSizeAndColourScale) {
         for (double v : f.displacement) EXPECT_TRUE(std::isfinite(v) && v >= 0.0);
         const fs::path dir = work_ / ("again" + std::to_string(k));
         fs::create_directories(dir);
-        infos.push_back(orodem::render_picture_pair(f.p, &f.displacement, orodem::run_view(saved.config), f.S,
-                                                    dir.string(), "x"));
+        infos.push_back(orodem::render_output_pictures({&f.p, &f.displacement, f.S}, orodem::run_view(saved.config),
+                                                       dir.string(), "x"));
         ASSERT_EQ(infos.back().size(), 2u);
         EXPECT_EQ(png_size(dir / "displacement_x.png").width, first.width);
         EXPECT_EQ(png_size(dir / "displacement_x.png").height, first.height);
@@ -141,7 +146,7 @@ TEST_F(Figures, RenderNeverReplacesFilesUnlessForced) {
     // Per-snapshot pictures go to figures/rendered/, not over the run's own.
     r = orodem("render r");
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_HAS(r.out, "5 pictures of 3 snapshots");
+    EXPECT_HAS(r.out, "7 pictures of 3 snapshots");  // horizons 3, displacement and strain 2 each
     EXPECT_TRUE(fs::exists(run / "figures" / "rendered" / "displacement_S00.500.png"));
     EXPECT_EQ(png_size(run / "figures" / "rendered" / "horizons_S00.500.png").height,
               png_size(run / "figures" / "horizons_S00.500.png").height);
@@ -151,7 +156,7 @@ TEST_F(Figures, RenderNeverReplacesFilesUnlessForced) {
     EXPECT_EQ(r.status, 2);
     EXPECT_EQ(count_lines(r.err), 1) << r.err;
     EXPECT_HAS(r.err, "horizons_S00.250.png");
-    EXPECT_HAS(r.err, "1 more");
+    EXPECT_HAS(r.err, "2 more");  // its displacement and strain maps
     EXPECT_EQ(orodem("render r --at 0.25 --force").status, 0);
     // Bad requests: exit 2, one line, nothing written.
     r = orodem("render r --out fig.jpg");
@@ -161,7 +166,8 @@ TEST_F(Figures, RenderNeverReplacesFilesUnlessForced) {
     EXPECT_FALSE(fs::exists(work_ / "fig.jpg"));
     EXPECT_EQ(orodem("render r --color-by displacement").status, 2);  // only with --out
     EXPECT_EQ(orodem("render r --out a.png --format svg").status, 2);
-    EXPECT_EQ(orodem("render r --out a.png --color-by strain").status, 2);
+    EXPECT_EQ(orodem("render r --out a.png --color-by strains").status, 2);
+    EXPECT_EQ(orodem("render r --color-by strain").status, 2);  // only with --out
 }
 
 TEST_F(Figures, MovieNeedsFfmpegAndMakesTheAnimation) {
@@ -192,6 +198,9 @@ TEST_F(Figures, MovieNeedsFfmpegAndMakesTheAnimation) {
     const std::string mp4 = slurp(work_ / "run.mp4");
     ASSERT_GT(mp4.size(), 100u);
     EXPECT_EQ(mp4.substr(4, 4), "ftyp");
+    r = orodem("movie r --out strain.mp4 --color-by strain");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(slurp(work_ / "strain.mp4").substr(4, 4), "ftyp");
     r = orodem("movie r --out sub/run.gif --color-by displacement --fps 2 --width 640");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(slurp(work_ / "sub" / "run.gif").substr(0, 4), "GIF8");
@@ -205,3 +214,82 @@ TEST_F(Figures, MovieNeedsFfmpegAndMakesTheAnimation) {
     EXPECT_EQ(slurp(work_ / "run.mp4"), mp4);
     EXPECT_EQ(orodem("movie r --out run.mp4 --force").status, 0);
 }
+
+TEST_F(Figures, StrainMapsCarryTheFaultsOfTheTableOnOneScale) {
+    const fs::path run = make_run();
+    // The run's own strain maps: every output but the first, the run's size.
+    const PngSize h = png_size(run / "figures" / "horizons_S00.250.png");
+    EXPECT_FALSE(fs::exists(run / "figures" / "strain_S00.000.png"));
+    for (const char* f : {"strain_S00.250.png", "strain_S00.500.png"}) {
+        const PngSize s = png_size(run / "figures" / f);
+        EXPECT_EQ(s.width, h.width) << f;
+        EXPECT_EQ(s.height, h.height) << f;
+    }
+    // The tiny run finds no fault: a table planted in its place with two
+    // active faults at its last output (S = 0.5) (one pro-, one retro-vergent) and an inactive
+    // one. Drawn again from the snapshots with the table's lines: the lines
+    // drawn are the table's active faults at that S, in metres; one legend.
+    const orodem::SavedRun saved = orodem::open_saved_run(run.string());
+    const double h0 = saved.config.h0;
+    std::vector<orodem::Fault> planted(3);
+    planted[0].id = 1, planted[0].vergence = 1, planted[0].root = {-1.0 * h0, 0.0}, planted[0].tip = {-1.5 * h0, 0.8 * h0};
+    planted[1].id = 2, planted[1].vergence = -1, planted[1].root = {0.2 * h0, 0.0}, planted[1].tip = {0.9 * h0, 0.7 * h0};
+    planted[2] = planted[0];
+    planted[2].id = 3, planted[2].active = false;
+    std::string csv = orodem::faults_header() + "\n";
+    for (const auto& f : planted) csv += orodem::faults_line(saved.snaps[2].S, f, h0) + "\n";
+    write(run / "faults.csv", csv);
+    const orodem::RunFaults table = orodem::run_faults(run.string());
+    ASSERT_EQ(table.rows.size(), 3u);
+    const orodem::RunFaultLines lines = orodem::run_fault_lines(table, saved.snaps, saved.config.h0);
+    ASSERT_EQ(lines.size(), 3u);
+    EXPECT_TRUE(lines[0].empty());  // S = 0: no interval, no fault
+    std::vector<orodem::PictureInfo> maps;
+    for (std::size_t k : {1u, 2u}) {
+        std::size_t active = 0;
+        for (const orodem::FaultRow& row : table.rows) {
+            if (std::fabs(row.S - saved.snaps[k].S) > 1e-6 || !row.fault.active) continue;
+            ASSERT_LT(active, lines[k].size());
+            EXPECT_NEAR(lines[k][active].root.x, row.fault.root.x * saved.config.h0, 1e-9);
+            EXPECT_NEAR(lines[k][active].tip.y, row.fault.tip.y * saved.config.h0, 1e-9);
+            EXPECT_EQ(lines[k][active].vergence, row.fault.vergence);
+            ++active;
+        }
+        EXPECT_EQ(active, lines[k].size());
+        EXPECT_EQ(lines[k].size(), k == 2 ? 2u : 0u);
+        const orodem::Frame f = orodem::read_frame(saved, k);
+        ASSERT_EQ(f.strain.size(), f.p.size());
+        ASSERT_EQ(f.strain_total.size(), f.p.size());
+        const fs::path dir = work_ / ("strain" + std::to_string(k));
+        fs::create_directories(dir);
+        const auto infos = orodem::render_output_pictures(orodem::frame_panel(f, "strain", &lines[k]),
+                                                          orodem::run_view(saved.config), dir.string(), "x");
+        ASSERT_EQ(infos.size(), 3u);
+        EXPECT_EQ(infos[2].faults_drawn, lines[k]);
+        EXPECT_EQ(png_size(dir / "strain_x.png").height, h.height);
+        maps.push_back(infos[2]);
+        std::printf("    S = %.2f: %zu active faults drawn\n", f.S, lines[k].size());
+    }
+    EXPECT_EQ(maps[0].width_px, maps[1].width_px);
+    EXPECT_EQ(maps[0].height_px, maps[1].height_px);
+    EXPECT_EQ(maps[0].legend.lo, orodem::kStrainLo);
+    EXPECT_EQ(maps[0].legend.hi, orodem::kStrainHi);
+    EXPECT_EQ(maps[0].legend.lo, maps[1].legend.lo);
+    EXPECT_EQ(maps[0].legend.hi, maps[1].legend.hi);
+    EXPECT_EQ(maps[0].legend.ticks, maps[1].legend.ticks);
+    EXPECT_EQ(maps[0].legend.title, maps[1].legend.title);
+    EXPECT_EQ(maps[0].legend.line_keys, maps[1].legend.line_keys);
+    // Stacked by render, incremental and finite, in PDF and PNG.
+    Result r = orodem("render r --color-by strain --at 0.25,0.5 --out fig.pdf");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(slurp(work_ / "fig.pdf").substr(0, 5), "%PDF-");
+    r = orodem("render r --color-by strain_total --at 0,0.25,0.5 --out total.png");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(png_size(work_ / "total.png").height,
+              orodem::picture_size(orodem::run_view(saved.config), 3).height_px);
+    r = orodem("render r --color-by strain --at 0.5 --out fig.svg");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_HAS(r.out, "2 active faults drawn");
+    EXPECT_HAS(slurp(work_ / "fig.svg"), ">retro-vergent fault</text>");
+}
+

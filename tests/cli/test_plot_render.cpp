@@ -220,6 +220,24 @@ TEST_F(PlotRender, RenderRedrawsTheSnapshots) {
     EXPECT_EQ(decode_png(work_ / "small" / "horizons_S00.000.png").width, 640);
     EXPECT_EQ(orodem("render r1 --format gif").status, 2);
     EXPECT_EQ(orodem("render r1 --at one").status, 2);
+    // Snapshots without strain arrays (an orodem before strain maps): no
+    // strain map, said; a strain figure or movie stops with one line, exit
+    // 2, nothing written.
+    EXPECT_FALSE(fs::exists(out / "strain_S01.000.png"));
+    r = orodem("render r1 --at 1 --dir old --force");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_HAS(r.out, "1 without strain arrays");
+    EXPECT_FALSE(fs::exists(work_ / "old" / "strain_S01.000.png"));
+    for (const char* cmd : {"render r1 --color-by strain --out s.png", "render r1 --color-by strain_total --out s.png",
+                            "movie r1 --color-by strain --out s.mp4"}) {
+        r = orodem(cmd);
+        EXPECT_EQ(r.status, 2) << cmd;
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        EXPECT_HAS(r.err, "snapshots/S0");
+        EXPECT_HAS(r.err, "shear_strain");
+    }
+    EXPECT_FALSE(fs::exists(work_ / "s.png"));
+    EXPECT_FALSE(fs::exists(work_ / "s.mp4"));
 }
 
 TEST_F(PlotRender, MeasureTakesTheRunsMeasuresAgainFromItsSnapshots) {

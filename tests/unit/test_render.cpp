@@ -5,7 +5,9 @@
 // (with <text>) and PDF are written too; the displacement colours follow the
 // fixed scale (or the per-frame quantile for old snapshots); the legend is
 // the same whatever the data; a stack of panels shares one width; and
-// 30,000 discs render quickly (time printed only).
+// 30,000 discs render quickly (time printed only). Strain maps: each disc's
+// pixel is the log bar's colour of its γ, and the active faults are drawn
+// (and returned) as lines, pro-vergent solid blue, retro-vergent dashed green.
 #include <gtest/gtest.h>
 
 #include <cairo.h>
@@ -369,4 +371,116 @@ TEST(Render, RunViewIsTheModelBoxOfTheConfig) {
     // The critical wedge ends at its backstop.
     b.experiment = "critical-wedge";
     EXPECT_DOUBLE_EQ(run_view(b).x_max, 5.0);
+}
+
+TEST(Render, StrainColoursFollowTheFixedLogScale) {
+    // Incremental γ on the log bar 1e-3..1: 1e-3 and below (and NaN, an
+    // undefined strain) at the bottom colour, light grey; 10^-1.5, halfway
+    // along the bar in log, halfway between the map's second and third stops
+    // ((1, 0.85, 0.3) and (0.9, 0.35, 0.1)): (0.95, 0.6, 0.2); 1 and above at
+    // the top, dark red. Every disc's pixel is bar_colour of its γ.
+    const fs::path dir = scratch_dir("strain");
+    ParticleStore p;
+    std::vector<double> gamma;
+    const std::vector<std::pair<Vec2, double>> discs = {
+        {{-3.5, 1.0}, 1e-4}, {{-2.5, 1.0}, kStrainLo}, {{-1.5, 1.0}, std::pow(10.0, -1.5)}, {{-0.5, 1.0}, 0.05},
+        {{0.5, 1.0}, kStrainHi}, {{1.5, 1.0}, 10.0}, {{2.5, 1.0}, std::nan("")}, {{3.5, 1.0}, 0.0}};
+    for (const auto& [c, g] : discs) {
+        p.add(c, 0.3, 2500.0);
+        gamma.push_back(g);
+    }
+    ViewOptions o = view(1690);
+    o.color_by = "strain";
+    o.output_ds = 0.25;
+    const std::string png = (dir / "s.png").string();
+    const PictureInfo info = render_panels({{&p, nullptr, 0.25, &gamma, nullptr}}, o, png);
+    Image img(png);
+    ASSERT_TRUE(img.ok());
+    auto as8 = [](Colour c) { return expect8(c.r, c.g, c.b); };
+    for (const auto& [c, g] : discs) EXPECT_TRUE(close_color(img.at_point(o, c), as8(bar_colour(info.legend, g)))) << g;
+    const Rgb8 grey = expect8(0.82, 0.82, 0.82), dark = expect8(0.45, 0.0, 0.05);
+    EXPECT_TRUE(close_color(img.at_point(o, discs[0].first), grey));
+    EXPECT_TRUE(close_color(img.at_point(o, discs[1].first), grey));
+    EXPECT_TRUE(close_color(img.at_point(o, discs[2].first), expect8(0.95, 0.6, 0.2)));
+    EXPECT_TRUE(close_color(img.at_point(o, discs[4].first), dark));
+    EXPECT_TRUE(close_color(img.at_point(o, discs[5].first), dark));
+    EXPECT_TRUE(close_color(img.at_point(o, discs[6].first), grey));
+    EXPECT_TRUE(close_color(img.at_point(o, discs[7].first), grey));
+    // The legend: a fixed log bar labelled in decades, the fault line styles.
+    EXPECT_TRUE(info.legend.log_scale);
+    EXPECT_EQ(info.legend.lo, kStrainLo);
+    EXPECT_EQ(info.legend.hi, kStrainHi);
+    ASSERT_EQ(info.legend.ticks.size(), 4u);
+    EXPECT_NEAR(info.legend.ticks[2], 0.1, 1e-15);
+    EXPECT_NE(info.legend.title.find("ΔS = 0.25"), std::string::npos) << info.legend.title;
+    EXPECT_EQ(info.legend.line_keys, (std::vector<std::string>{"pro-vergent fault", "retro-vergent fault"}));
+    // The finite strain: its own fixed bar, 1e-2..10.
+    o.color_by = "strain_total";
+    const Legend total = picture_legend(o);
+    EXPECT_EQ(total.lo, kStrainTotalLo);
+    EXPECT_EQ(total.hi, kStrainTotalHi);
+    EXPECT_NE(total.title.find("since S = 0"), std::string::npos) << total.title;
+    // SVG: the bar's labels are text.
+    o.color_by = "strain";
+    render_panels({{&p, nullptr, 0.25, &gamma, nullptr}}, o, (dir / "s.svg").string());
+    const std::string svg = slurp_text(dir / "s.svg");
+    for (const char* s : {">≤ 0.001</text>", ">0.01</text>", ">≥ 1</text>", ">pro-vergent fault</text>"})
+        EXPECT_NE(svg.find(s), std::string::npos) << s;
+    fs::remove_all(dir);
+}
+
+TEST(Render, FaultLinesAreDrawnFromRootToTipInTheirVergenceStyle) {
+    // Three faults, one inactive: only the two active ones become lines (in
+    // metres: the table's h0 units times h0 = 2), drawn and returned in
+    // order; the pro-vergent line is solid blue along its length, the
+    // retro-vergent one dashed green (blue and green pixels found along
+    // each, and white gaps along the dashed one).
+    const fs::path dir = scratch_dir("faults");
+    std::vector<Fault> table(3);
+    table[0].vergence = 1;
+    table[0].root = {-1.5, 0.25};
+    table[0].tip = {-0.5, 0.25};
+    table[1].vergence = -1;
+    table[1].root = {0.5, 0.75};
+    table[1].tip = {1.5, 0.75};
+    table[2] = table[0];
+    table[2].active = false;
+    const std::vector<FaultLine> lines = active_fault_lines(table, 2.0);
+    ASSERT_EQ(lines.size(), 2u);
+    EXPECT_EQ(lines[0], (FaultLine{{-3.0, 0.5}, {-1.0, 0.5}, 1}));
+    EXPECT_EQ(lines[1], (FaultLine{{1.0, 1.5}, {3.0, 1.5}, -1}));
+    ParticleStore p;
+    p.add({0.0, 0.3}, 0.3, 2500.0);
+    ViewOptions o = view(1600);
+    o.color_by = "strain";
+    const std::string png = (dir / "f.png").string();
+    const PictureInfo info = render_panels({{&p, nullptr, 1.0, nullptr, &lines}}, o, png);
+    EXPECT_EQ(info.faults_drawn, lines);
+    Image img(png);
+    ASSERT_TRUE(img.ok());
+    const PlotArea a = plot_area(o, 1, 0);
+    auto count_along = [&](const FaultLine& f, auto pred) {  // pixels within ±2 rows of the line's row
+        int n = 0;
+        const int Y = static_cast<int>(std::floor(a.top + (o.y_max - f.root.y) * a.scale));
+        for (double x = f.root.x + 0.05; x < f.tip.x - 0.05; x += 0.01)
+            for (int dy = -2; dy <= 2; ++dy)
+                n += pred(img.at(static_cast<int>(std::floor(a.left + (x - o.x_min) * a.scale)), Y + dy)) ? 1 : 0;
+        return n;
+    };
+    auto blue = [](Rgb8 c) { return c.b > 200 && c.r < 60; };
+    auto green = [](Rgb8 c) { return c.g > 120 && c.r < 40 && c.b < 100; };
+    auto white = [](Rgb8 c) { return c.r > 250 && c.g > 250 && c.b > 250; };
+    EXPECT_GT(count_along(lines[0], blue), 150);
+    EXPECT_EQ(count_along(lines[0], green), 0);
+    EXPECT_GT(count_along(lines[1], green), 50);
+    EXPECT_EQ(count_along(lines[1], blue), 0);
+    // The dashed line's gaps: white (its halo) on the line's own row.
+    int gaps = 0;
+    for (double x = lines[1].root.x + 0.05; x < lines[1].tip.x - 0.05; x += 0.01)
+        gaps += white(img.at_point(o, {x, lines[1].root.y})) ? 1 : 0;
+    EXPECT_GT(gaps, 20);
+    // Horizons and displacement pictures draw no fault lines.
+    o.color_by = "horizons";
+    EXPECT_TRUE(render_panels({{&p, nullptr, 1.0, nullptr, &lines}}, o, png).faults_drawn.empty());
+    fs::remove_all(dir);
 }

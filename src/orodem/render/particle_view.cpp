@@ -15,7 +15,10 @@ namespace {
 // Two horizon colours (proside) and their darker retroside shades.
 constexpr Colour kBandA{0.93, 0.76, 0.38}, kBandB{0.55, 0.70, 0.85};
 constexpr double kRetroShade = 0.55;
-constexpr Colour kBlack{0, 0, 0}, kSPoint{0.8, 0.0, 0.0};
+constexpr Colour kBlack{0, 0, 0}, kSPoint{0.8, 0.0, 0.0}, kWhite{1, 1, 1};
+// Fault lines on strain maps: pro-vergent solid blue, retro-vergent dashed
+// green (told apart by style too, in grey print and for colour-blind eyes).
+constexpr Colour kProFault{0.05, 0.30, 0.95}, kRetroFault{0.0, 0.60, 0.25};
 // The frame's wedge: slopes whose cotangents add up to this (run_view) [-].
 constexpr double kCotangentSum = 6.0;
 
@@ -37,6 +40,17 @@ Colour displacement_colour(double s) {
     const double f = s - k;
     const Colour a = stops[k], b = stops[k + 1];
     return {a.r + f * (b.r - a.r), a.g + f * (b.g - a.g), a.b + f * (b.b - a.b)};
+}
+
+/// Where v lies along g's bar, 0 at lo, 1 at hi (clamped; NaN, and v ≤ 0 on
+/// a log bar, at 0).
+double bar_position(const Legend& g, double v) {
+    double s = 0.0;
+    if (g.log_scale)
+        s = v > 0.0 ? (std::log10(v) - std::log10(g.lo)) / (std::log10(g.hi) - std::log10(g.lo)) : 0.0;
+    else
+        s = (v - g.lo) / (g.hi - g.lo);
+    return std::clamp(std::isfinite(s) ? s : 0.0, 0.0, 1.0);
 }
 
 /// Pixel layout of a picture, every length from the font size F = width / 60.
@@ -63,6 +77,9 @@ Layout layout(const ViewOptions& o, std::size_t panels) {
     return L;
 }
 
+/// The fault lines' width [px].
+double fault_width(const Layout& L) { return std::max(2.0, L.F / 8.0); }
+
 std::string tick_text(double t, double step) { return plot::tick_label(t, step); }
 
 /// The legend in the header's right part, right-aligned at x_right.
@@ -76,14 +93,27 @@ void draw_legend(Canvas& c, const Legend& g, double x_right, const Layout& L) {
             c.fill_rect(x0 + bar_w * k / steps, bar_y, bar_w / steps + 0.5, bar_h, displacement_colour((k + 0.5) / steps));
         c.stroke_rect(x0, bar_y, bar_w, bar_h, kBlack, 1.0);
         const double step = g.ticks.size() > 1 ? g.ticks[1] - g.ticks[0] : 1.0;
+        std::string first_label;
         for (std::size_t k = 0; k < g.ticks.size(); ++k) {
-            const double X = x0 + bar_w * (g.ticks[k] - g.lo) / (g.hi - g.lo);
+            const double X = x0 + bar_w * bar_position(g, g.ticks[k]);
             c.line(X, bar_y + bar_h, X, bar_y + bar_h + 0.25 * L.F, kBlack, 1.0);
-            const bool last = k + 1 == g.ticks.size();
-            c.text((last ? "≥ " : "") + tick_text(g.ticks[k], step), X, bar_y + bar_h + 0.4 * L.F, size,
-                   HAlign::centre, VAlign::top);
+            const bool first = k == 0, last = k + 1 == g.ticks.size();
+            const std::string label = g.log_scale ? fmt::format("{}{:g}", first ? "≤ " : last ? "≥ " : "", g.ticks[k])
+                                                  : (last ? "≥ " : "") + tick_text(g.ticks[k], step);
+            c.text(label, X, bar_y + bar_h + 0.4 * L.F, size, HAlign::centre, VAlign::top);
+            if (first) first_label = label;
         }
         c.text(g.title, x0 - 0.6 * L.F, bar_y + 0.5 * bar_h, size, HAlign::right, VAlign::middle);
+        // The fault line styles under the title, clear of the first tick label.
+        double x = x0 - 0.5 * text_width(first_label, size) - 1.0 * L.F;
+        const double y = bar_y + bar_h + 0.9 * L.F, lw = fault_width(L);
+        for (std::size_t k = g.line_keys.size(); k-- > 0;) {
+            x -= text_width(g.line_keys[k], size);
+            c.text(g.line_keys[k], x, y, size, HAlign::left, VAlign::middle);
+            x -= 0.4 * L.F + 2.0 * L.F;
+            c.line(x, y, x + 2.0 * L.F, y, k == 0 ? kProFault : kRetroFault, lw, k != 0);
+            x -= 1.2 * L.F;
+        }
         return;
     }
     // Swatches, laid out from the right: "label [ ][ ]" pairs.
@@ -102,12 +132,13 @@ void draw_legend(Canvas& c, const Legend& g, double x_right, const Layout& L) {
     c.text(g.title, x_right, y + sw + 0.45 * L.F, size, HAlign::right, VAlign::top);
 }
 
+/// Draws one panel; the fault lines it drew are appended to drawn.
 void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layout& L, double top, bool x_labels,
-                double full) {
+                const Legend& g, double full, std::vector<FaultLine>& drawn) {
     const double x0 = L.left;
     auto px = [&](double x) { return x0 + (x - o.x_min) * L.scale; };
     auto py = [&](double y) { return top + (o.y_max - y) * L.scale; };
-    const bool by_disp = o.color_by == "displacement";
+    const bool by_disp = o.color_by == "displacement", by_strain = is_strain(o.color_by);
     const ParticleStore& p = *panel.p;
     c.clip(x0, top, L.plot_w, L.plot_h);
     bool cut_above = false;  // material reaching over the frame's top edge
@@ -116,10 +147,21 @@ void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layou
         if (x + r < o.x_min || x - r > o.x_max || y + r < o.y_min) continue;
         cut_above = cut_above || y + r > o.y_max;
         if (y - r > o.y_max) continue;
-        const Colour col = !by_disp ? horizon_colour(p.initial_depth[s], o.band, p.side[s] != 0)
-                           : panel.displacement && full > 0.0 ? displacement_colour((*panel.displacement)[s] / full)
-                                                              : displacement_colour(0.0);
+        const Colour col = by_strain ? bar_colour(g, panel.strain ? (*panel.strain)[s] : 0.0)
+                           : !by_disp ? horizon_colour(p.initial_depth[s], o.band, p.side[s] != 0)
+                           : panel.displacement && full > 0.0 ? bar_colour(g, (*panel.displacement)[s] * (g.hi / full))
+                                                              : bar_colour(g, 0.0);
         c.disc(px(x), py(y), r * L.scale, col);
+    }
+    if (by_strain && panel.faults) {  // on a white halo, readable over any colour
+        const double w = fault_width(L);
+        for (const FaultLine& f : *panel.faults)
+            c.line(px(f.root.x), py(f.root.y), px(f.tip.x), py(f.tip.y), kWhite, w + 0.5 * w);
+        for (const FaultLine& f : *panel.faults) {
+            c.line(px(f.root.x), py(f.root.y), px(f.tip.x), py(f.tip.y), f.vergence > 0 ? kProFault : kRetroFault, w,
+                   f.vergence <= 0);
+            drawn.push_back(f);
+        }
     }
     c.unclip();
     const double lw = std::max(1.0, L.F / 18.0), size = 0.85 * L.F, bottom = top + L.plot_h;
@@ -145,7 +187,7 @@ void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layou
     // The panel's S on a white patch (readable over material).
     const std::string label = fmt::format("S = {:.2f}", panel.S);
     const double label_size = 0.9 * L.F;
-    c.fill_rect(x0 + lw, top + lw, text_width(label, label_size, true) + 0.6 * L.F, 1.3 * L.F, {1, 1, 1});
+    c.fill_rect(x0 + lw, top + lw, text_width(label, label_size, true) + 0.6 * L.F, 1.3 * L.F, kWhite);
     c.text(label, x0 + 0.3 * L.F, top + 0.35 * L.F, label_size, HAlign::left, VAlign::top, true);
     if (cut_above)  // said, not hidden: the run's frame was too low for this wedge
         c.text("material above the frame is cut off", x0 + L.plot_w - 0.3 * L.F, top + 0.35 * L.F, size,
@@ -153,6 +195,17 @@ void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layou
 }
 
 }  // namespace
+
+bool is_strain(const std::string& color_by) { return color_by == "strain" || color_by == "strain_total"; }
+
+std::vector<FaultLine> active_fault_lines(const std::vector<Fault>& faults, double unit) {
+    std::vector<FaultLine> out;
+    for (const Fault& f : faults)
+        if (f.active) out.push_back({unit * f.root, unit * f.tip, f.vergence});
+    return out;
+}
+
+Colour bar_colour(const Legend& g, double v) { return displacement_colour(bar_position(g, v)); }
 
 ViewOptions run_view(const ConfigBasics& b, int width_px) {
     const double h0 = b.h0;
@@ -167,6 +220,7 @@ ViewOptions run_view(const ConfigBasics& b, int width_px) {
     v.band = h0 / 5.0;
     v.width_px = width_px;
     v.title = b.experiment;
+    v.output_ds = b.output_ds;
     return v;
 }
 
@@ -187,6 +241,19 @@ Legend picture_legend(const ViewOptions& o) {
         }
         return g;
     }
+    if (is_strain(o.color_by)) {
+        const bool total = o.color_by == "strain_total";
+        g.title = total ? std::string("finite max shear strain γ since S = 0 [-], log scale")
+                  : o.output_ds > 0.0
+                      ? fmt::format("max shear strain γ over the output interval ΔS = {:g} [-], log scale", o.output_ds)
+                      : std::string("max shear strain γ over the output interval [-], log scale");
+        g.lo = total ? kStrainTotalLo : kStrainLo;
+        g.hi = total ? kStrainTotalHi : kStrainHi;
+        g.log_scale = true;
+        for (double t = g.lo; t <= g.hi * (1 + 1e-9); t *= 10.0) g.ticks.push_back(t);
+        g.line_keys = {"pro-vergent fault", "retro-vergent fault"};
+        return g;
+    }
     g.title = fmt::format("horizons: bands of initial depth, {:g} h0 thick", o.band / o.h0);
     g.swatches = {{"proside", kBandA}, {"", kBandB}, {"retroside", shade(kBandA, kRetroShade)},
                   {"", shade(kBandB, kRetroShade)}};
@@ -195,7 +262,7 @@ Legend picture_legend(const ViewOptions& o) {
 
 PictureInfo picture_size(const ViewOptions& o, std::size_t panels) {
     const Layout L = layout(o, panels);
-    return {L.width, L.height, picture_legend(o)};
+    return {L.width, L.height, picture_legend(o), {}};
 }
 
 PlotArea plot_area(const ViewOptions& o, std::size_t panels, std::size_t k) {
@@ -208,22 +275,23 @@ PictureInfo render_panels(const std::vector<Panel>& panels, const ViewOptions& o
     const Layout L = layout(o, panels.size());
     const Legend legend = picture_legend(o);
     std::unique_ptr<Canvas> c = make_canvas(format, L.width, L.height);
+    std::vector<FaultLine> drawn;
     c->text(o.title, L.left, 0.55 * L.F, L.F, HAlign::left, VAlign::top, true);
     draw_legend(*c, legend, L.width - L.right, L);
     for (std::size_t k = 0; k < panels.size(); ++k) {
-        double full = 1.0;
+        double full = 1.0;  // displacement: the value drawn at the top of the bar
         if (o.color_by == "displacement" && panels[k].displacement)
             full = o.per_frame_scale ? positive_quantile(*panels[k].displacement, o.displacement_quantile)
                                      : kDisplacementFull;
         draw_panel(*c, panels[k], o, L, L.head + static_cast<double>(k) * (L.plot_h + L.gap), k + 1 == panels.size(),
-                   full);
+                   legend, full, drawn);
     }
     const double stack_bottom = L.height - L.bottom;
     c->text("x / h0 (S point at 0)", L.left + 0.5 * L.plot_w, stack_bottom + 1.75 * L.F, L.F, HAlign::centre,
             VAlign::top);
     c->text("y / h0", 0.35 * L.F, 0.5 * (L.head + stack_bottom), L.F, HAlign::centre, VAlign::top, false, true);
     write_file_atomic(path, c->finish());
-    return {L.width, L.height, legend};
+    return {L.width, L.height, legend, std::move(drawn)};
 }
 
 double positive_quantile(const std::vector<double>& v, double q) {
@@ -238,15 +306,22 @@ double positive_quantile(const std::vector<double>& v, double q) {
     return pos[rank - 1];
 }
 
-std::vector<PictureInfo> render_picture_pair(const ParticleStore& p, const std::vector<double>* disp, ViewOptions view,
-                                             double S, const std::string& dir, const std::string& name,
-                                             const std::string& ext) {
+std::vector<PictureInfo> render_output_pictures(const Panel& panel, ViewOptions view, const std::string& dir,
+                                                const std::string& name, const std::string& ext) {
     std::vector<PictureInfo> out;
     view.color_by = "horizons";
-    out.push_back(render_panels({{&p, nullptr, S}}, view, fmt::format("{}/horizons_{}.{}", dir, name, ext)));
-    if (!disp) return out;
-    view.color_by = "displacement";
-    out.push_back(render_panels({{&p, disp, S}}, view, fmt::format("{}/displacement_{}.{}", dir, name, ext)));
+    out.push_back(render_panels({{panel.p, nullptr, panel.S}}, view, fmt::format("{}/horizons_{}.{}", dir, name, ext)));
+    if (panel.displacement) {
+        view.color_by = "displacement";
+        out.push_back(render_panels({{panel.p, panel.displacement, panel.S}}, view,
+                                    fmt::format("{}/displacement_{}.{}", dir, name, ext)));
+    }
+    if (panel.strain) {
+        view.color_by = "strain";
+        view.per_frame_scale = false;
+        out.push_back(render_panels({{panel.p, nullptr, panel.S, panel.strain, panel.faults}}, view,
+                                    fmt::format("{}/strain_{}.{}", dir, name, ext)));
+    }
     return out;
 }
 

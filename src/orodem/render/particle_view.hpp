@@ -24,6 +24,15 @@
 // normalised rel_disp; they are drawn with full colour at its 0.99 quantile
 // and the legend says so ("per-frame scale").
 //
+// "strain" colours each disc by its incremental maximum shear strain γ over
+// the output interval (the snapshot's shear_strain), "strain_total" by the
+// finite γ from S = 0 (shear_strain_total), each on a fixed logarithmic bar
+// (kStrainLo..kStrainHi, kStrainTotalLo..kStrainTotalHi; docs/figures.md
+// gives the data they were chosen from), the active faults of the output
+// drawn over them as lines from root to tip: pro-vergent solid blue,
+// retro-vergent dashed green, both on a white halo. The faults come in as
+// plain segments (FaultLine): render/ knows no fault table (run/ is above it).
+//
 // Every picture carries its legend (a colour bar with its values and unit,
 // or the horizon swatches) and fonts of 1/60 of the width (27 px on a
 // 1600 px picture: 2.7 mm when printed 16 cm wide).
@@ -32,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "orodem/analysis/faults.hpp"
 #include "orodem/io/config.hpp"
 #include "orodem/render/canvas.hpp"
 #include "orodem/state/particles.hpp"
@@ -40,6 +50,22 @@ namespace orodem {
 
 /// Top of the displacement colour bar: relative displacement / (ΔS h0) [-].
 inline constexpr double kDisplacementFull = 0.3;
+/// The incremental shear strain bar (log scale): γ over one output interval [-].
+inline constexpr double kStrainLo = 1e-3, kStrainHi = 1.0;
+/// The finite shear strain bar (log scale): γ since S = 0 [-].
+inline constexpr double kStrainTotalLo = 1e-2, kStrainTotalHi = 10.0;
+
+/// A fault drawn on a strain map: a segment from root to tip [m] (the run's
+/// coordinates: x from the S point, y from the base), and its vergence (+1
+/// pro-vergent, −1 retro-vergent, as Fault::vergence).
+struct FaultLine {
+    Vec2 root, tip;
+    int vergence = 0;
+    bool operator==(const FaultLine&) const = default;
+};
+/// The active faults of `faults` as lines; unit converts their lengths to
+/// metres (1 for the run's faults, h0 for faults.csv's rows, which are in h0).
+std::vector<FaultLine> active_fault_lines(const std::vector<Fault>& faults, double unit);
 
 struct ViewOptions {
     double x_min = 0, x_max = 1;   // visible range [m]
@@ -48,7 +74,8 @@ struct ViewOptions {
     double x_s = 0;                // S point [m]
     int width_px = 1600;           // picture width; the height follows from the frame's aspect ratio
     double band = 1;               // horizon band thickness [m]
-    std::string color_by = "horizons";  // horizons | displacement
+    std::string color_by = "horizons";  // horizons | displacement | strain | strain_total
+    double output_ds = 0;          // the run's ΔS between outputs (named in the strain legend; 0: not named)
     std::string title;             // header text, e.g. "exp1"
     bool per_frame_scale = false;  // displacement values are normalised per frame (old snapshots)
     double displacement_quantile = 0.99;  // per_frame_scale only: of the positive values, the full-colour one
@@ -69,12 +96,22 @@ ViewOptions run_view(const ConfigBasics& b, int width_px = 1600);
 /// What a picture's legend shows, as numbers (tests compare them between frames).
 struct Legend {
     std::string title;     // e.g. "relative displacement |Δx_i − Δx_j| / (ΔS h0)"
-    double lo = 0, hi = 0; // colour bar ends (displacement); 0, 0 for horizons
+    double lo = 0, hi = 0; // colour bar ends (displacement, strain); 0, 0 for horizons
+    bool log_scale = false;     // the bar is logarithmic (strain)
     std::vector<double> ticks;  // labelled values along the bar
     std::vector<std::pair<std::string, Colour>> swatches;  // horizons: label and colour of each swatch
+    std::vector<std::string> line_keys;  // strain: the fault line styles (pro-vergent, retro-vergent)
 };
 /// The legend of pictures drawn with o (frame-independent but for per_frame_scale).
 Legend picture_legend(const ViewOptions& o);
+
+/// Whether color_by is one of the strain maps (strain, strain_total).
+bool is_strain(const std::string& color_by);
+
+/// The colour of value v on g's colour bar: linear or logarithmic between
+/// lo and hi; v below lo (on a log bar also v ≤ 0) or NaN takes the bottom
+/// colour, v above hi the top one.
+Colour bar_colour(const Legend& g, double v);
 
 /// One panel of a picture: a state and its displacement values.
 struct Panel {
@@ -84,12 +121,18 @@ struct Panel {
     /// (the first snapshot), every disc drawn at 0.
     const std::vector<double>* displacement = nullptr;
     double S = 0;  // written in the panel's corner
+    /// Per slot, color_by = strain or strain_total: γ [-] (NaN: undefined,
+    /// drawn at the bottom colour); null: every disc at the bottom colour.
+    const std::vector<double>* strain = nullptr;
+    /// strain, strain_total: the lines drawn over the discs (null: none).
+    const std::vector<FaultLine>* faults = nullptr;
 };
 
 /// Pixel size and legend of a written picture.
 struct PictureInfo {
     int width_px = 0, height_px = 0;
     Legend legend;
+    std::vector<FaultLine> faults_drawn;  // every fault line drawn, panel by panel
 };
 
 /// The pixel size of a picture of n panels drawn with o.
@@ -115,13 +158,15 @@ PictureInfo render_panels(const std::vector<Panel>& panels, const ViewOptions& o
 /// no entry is positive. Independent of the order of v.
 double positive_quantile(const std::vector<double>& v, double q);
 
-/// The picture pair of one output, as `orodem run` writes it and `orodem
-/// render` writes it again: dir/horizons_<name>.<ext> and, when disp is given
-/// (not for the first output, which has no previous one to move from),
-/// dir/displacement_<name>.<ext>. view gives the frame; its colouring is set
-/// here. Returns the pictures written.
-std::vector<PictureInfo> render_picture_pair(const ParticleStore& p, const std::vector<double>* disp, ViewOptions view,
-                                             double S, const std::string& dir, const std::string& name,
-                                             const std::string& ext = "png");
+/// The pictures of one output, as `orodem run` writes them and `orodem
+/// render` writes them again: dir/horizons_<name>.<ext>; when
+/// panel.displacement is given (not for the first output, which has no
+/// previous one to move from) dir/displacement_<name>.<ext>; when
+/// panel.strain is given (incremental γ; not for the first output either)
+/// dir/strain_<name>.<ext> with panel.faults drawn on it. view gives the
+/// frame; its colouring is set here. Returns the pictures written, in that
+/// order.
+std::vector<PictureInfo> render_output_pictures(const Panel& panel, ViewOptions view, const std::string& dir,
+                                                const std::string& name, const std::string& ext = "png");
 
 }  // namespace orodem

@@ -38,6 +38,9 @@ Frame read_frame(const SavedRun& run, std::size_t k) {
     const auto& side = d.require("side", vtu);
     Frame f;
     f.S = run.snaps[k].S;
+    f.file = vtu;
+    if (const auto* g = d.find("shear_strain")) f.strain = *g;
+    if (const auto* g = d.find("shear_strain_total")) f.strain_total = *g;
     for (std::size_t i = 0; i < d.x.size(); ++i) {
         const std::size_t s = f.p.add(d.x[i], radius[i], 1.0);
         f.p.initial_depth[s] = depth[i];
@@ -71,16 +74,49 @@ std::vector<std::size_t> nearest_snapshots(const std::vector<Snapshot>& snaps, c
     return chosen;
 }
 
+namespace {
+
+[[noreturn]] void no_strain_error(const std::string& file, const std::string& color_by) {
+    throw ConfigError(fmt::format("'{}' holds no {} array (written by an orodem before strain maps): draw this run "
+                                  "with --color-by horizons or displacement",
+                                  file, color_by == "strain_total" ? "shear_strain_total" : "shear_strain"));
+}
+
+}  // namespace
+
+Panel frame_panel(const Frame& f, const std::string& color_by, const std::vector<FaultLine>* faults) {
+    Panel panel{&f.p, f.displacement.empty() ? nullptr : &f.displacement, f.S};
+    if (!is_strain(color_by)) return panel;
+    const bool total = color_by == "strain_total";
+    const std::vector<double>& g = total ? f.strain_total : f.strain;
+    if (g.size() != f.p.size()) no_strain_error(f.file, color_by);
+    panel.strain = &g;
+    panel.faults = faults;
+    return panel;
+}
+
+bool has_colour_data(const SavedRun& run, std::size_t k, const std::string& color_by) {
+    if (!is_strain(color_by)) return true;
+    const Frame f = read_frame(run, k);
+    return (color_by == "strain_total" ? f.strain_total : f.strain).size() == f.p.size();
+}
+
+void require_colour_data(const SavedRun& run, std::size_t k, const std::string& color_by) {
+    if (!has_colour_data(run, k, color_by)) no_strain_error((fs::path(run.dir) / run.snaps[k].file).string(), color_by);
+}
+
 PictureInfo render_run_figure(const SavedRun& run, const std::vector<std::size_t>& chosen, const std::string& color_by,
-                              int width_px, const std::string& out) {
+                              int width_px, const std::string& out, const RunFaultLines* faults) {
     std::vector<Frame> frames;
     for (std::size_t k : chosen) frames.push_back(read_frame(run, k));
     ViewOptions view = run_view(run.config, width_px);
     view.color_by = color_by;
     std::vector<Panel> panels;
-    for (const Frame& f : frames) {
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        const Frame& f = frames[i];
         view.per_frame_scale = view.per_frame_scale || f.per_frame_scale;
-        panels.push_back({&f.p, f.displacement.empty() ? nullptr : &f.displacement, f.S});
+        const std::size_t k = chosen[i];
+        panels.push_back(frame_panel(f, color_by, faults && k < faults->size() ? &(*faults)[k] : nullptr));
     }
     return render_panels(panels, view, out);
 }
@@ -176,7 +212,7 @@ std::size_t render_run_movie(const SavedRun& run, const MovieOptions& o, const s
         const Frame f = read_frame(run, k);
         ViewOptions v = view;
         v.per_frame_scale = f.per_frame_scale;
-        render_panels({{&f.p, f.displacement.empty() ? nullptr : &f.displacement, f.S}}, v,
+        render_panels({frame_panel(f, o.color_by, k < o.faults.size() ? &o.faults[k] : nullptr)}, v,
                       fmt::format("{}/frame{:05d}.png", tmp.path, k));
     }
     const std::string encoded = tmp.path + "/movie." + format, log = tmp.path + "/ffmpeg.log";

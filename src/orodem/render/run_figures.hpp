@@ -8,6 +8,13 @@
 // file in that folder, renamed into place; the folder is removed whatever
 // happens. ffmpeg runs as a child process (posix_spawnp) with its messages
 // in a log file there; when it fails, the error quotes the log's last line.
+//
+// Strain maps (--color-by strain | strain_total) need the snapshots' strain
+// arrays (shear_strain, shear_strain_total); a snapshot without them (an
+// orodem before strain maps) stops the figure or the movie with a
+// ConfigError naming it, before anything is written. Their fault lines come
+// from the caller (run/run_faults.hpp reads the run's fault table; render/
+// lies below run/ and knows no fault table).
 #pragma once
 
 #include <cstddef>
@@ -36,6 +43,9 @@ struct Frame {
     std::vector<double> displacement;  // per slot, see Panel::displacement; empty: none (first snapshot)
     bool per_frame_scale = false;      // the snapshot has only the normalised rel_disp (older orodem)
     double S = 0;
+    std::vector<double> strain;        // per slot, shear_strain (γ of the interval); empty: not in the snapshot
+    std::vector<double> strain_total;  // per slot, shear_strain_total (γ since S = 0); empty: not in the snapshot
+    std::string file;                  // the snapshot's path (for messages)
 };
 /// Snapshot k of the run: rel_disp_abs / ((S_k − S_{k−1}) h0) as the displacement.
 Frame read_frame(const SavedRun& run, std::size_t k);
@@ -43,17 +53,33 @@ Frame read_frame(const SavedRun& run, std::size_t k);
 /// Indices of the snapshots nearest each S of `at`, ascending, without repeats.
 std::vector<std::size_t> nearest_snapshots(const std::vector<Snapshot>& snaps, const std::vector<double>& at);
 
-/// The stacked figure (render_panels) of the chosen snapshots into out.
+/// Per snapshot of a run (as SavedRun::snaps), the fault lines drawn on its strain map.
+using RunFaultLines = std::vector<std::vector<FaultLine>>;
+
+/// The panel of frame f coloured by color_by, with its fault lines (may be
+/// null); ConfigError naming the snapshot when a strain colouring finds no
+/// strain array in it.
+Panel frame_panel(const Frame& f, const std::string& color_by, const std::vector<FaultLine>* faults);
+
+/// Whether snapshot k holds the arrays that color_by needs (always true but
+/// for strain and strain_total).
+bool has_colour_data(const SavedRun& run, std::size_t k, const std::string& color_by);
+/// The same, as a ConfigError naming the snapshot when it does not.
+void require_colour_data(const SavedRun& run, std::size_t k, const std::string& color_by);
+
+/// The stacked figure (render_panels) of the chosen snapshots into out;
+/// faults (may be null) gives the strain maps' fault lines.
 PictureInfo render_run_figure(const SavedRun& run, const std::vector<std::size_t>& chosen, const std::string& color_by,
-                              int width_px, const std::string& out);
+                              int width_px, const std::string& out, const RunFaultLines* faults = nullptr);
 
 /// The full path of an executable `name` on PATH; "" when there is none.
 std::string find_on_path(const std::string& name);
 
 struct MovieOptions {
-    std::string color_by = "horizons";  // horizons | displacement
+    std::string color_by = "horizons";  // horizons | displacement | strain | strain_total
     int width_px = 1600;                // frame width [px] (ffmpeg pads to even sizes)
     double fps = 4.0;                   // frames (snapshots) per second [1/s]
+    RunFaultLines faults;               // strain maps: per snapshot; empty: no lines
 };
 /// An animation of every snapshot of the run into out (.mp4: H.264; .gif);
 /// returns the number of frames. MissingToolError when ffmpeg is not on

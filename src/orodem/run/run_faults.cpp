@@ -91,4 +91,15 @@ std::vector<Fault> faults_at(const RunFaults& f, double S, double* S_out) {
     return at;
 }
 
+RunFaultLines run_fault_lines(const RunFaults& f, const std::vector<Snapshot>& snaps, double h0) {
+    RunFaultLines out(snaps.size());
+    for (std::size_t k = 0; k < snaps.size(); ++k) {
+        std::vector<Fault> at;  // faults.csv writes S with 6 decimals
+        for (const FaultRow& r : f.rows)
+            if (std::fabs(r.S - snaps[k].S) < 1e-5) at.push_back(r.fault);
+        out[k] = active_fault_lines(at, h0);
+    }
+    return out;
+}
+
 }  // namespace orodem

@@ -3,12 +3,16 @@
 // table existed, the same table computed again from its snapshots (the
 // positions of consecutive snapshots by disc id give each interval's strain,
 // then detection and tracking exactly as the run loop does them).
+// run_fault_lines turns the table into the lines drawn on the strain maps of
+// `orodem render` and `orodem movie` (render/ gets them as plain segments).
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "orodem/io/fault_table.hpp"
+#include "orodem/io/vtu_writer.hpp"
+#include "orodem/render/run_figures.hpp"
 
 namespace orodem {
 
@@ -24,5 +28,10 @@ RunFaults run_faults(const std::string& dir, bool from_snapshots = false);
 
 /// The rows of `f` at the output nearest S (an output S is listed once).
 std::vector<Fault> faults_at(const RunFaults& f, double S, double* S_out);
+
+/// Per snapshot of snaps, the active faults of the run's output at its S (in
+/// metres: the table's h0 units times h0); an empty list for a snapshot that
+/// is no output of the table (e.g. S = 0).
+RunFaultLines run_fault_lines(const RunFaults& f, const std::vector<Snapshot>& snaps, double h0);
 
 }  // namespace orodem

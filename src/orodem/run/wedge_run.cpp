@@ -297,12 +297,14 @@ void WedgeRun::measure_structures() {
     st_.faults = std::move(tracker.known);
     st_.next_fault_id = tracker.next_id;
     fault_counts_ = count_faults(all);
+    fault_lines_ = active_fault_lines(all, 1.0);
     stage_ = classify_stage(all, h0_);
     for (const Fault& f : all) faults_file_.line(faults_line(S(), f, h0_));
 }
 
 // The snapshot (with the strain arrays of measure_structures) and its
-// picture pair.
+// pictures: horizons, displacement and the strain map with the active faults
+// (not at the first output, which has no interval).
 void WedgeRun::draw() {
     const std::vector<double> rel_m = relative_displacement_m(sim_, st_.x_then);
     const std::vector<double> rel = normalised(rel_m);
@@ -318,7 +320,15 @@ void WedgeRun::draw() {
     write_vtu(fmt::format("{}/snapshots/{}.vtu", dir_, name), sim_.particles, rel, &stamp, &strain_, &rel_m);
     st_.pvd.emplace_back(S(), fmt::format("snapshots/{}.vtu", name));
     write_pvd(dir_ + "/run.pvd", st_.pvd);
-    render_picture_pair(sim_.particles, sim_.step_count > 0 ? &disp : nullptr, view_, S(), dir_ + "/figures", name);
+    const ParticleStore& p = sim_.particles;
+    const bool interval_done = sim_.step_count > 0;
+    std::vector<double> gamma;  // per slot (strain_ is by id)
+    if (interval_done && strain_.shear.size() == p.size()) {
+        gamma.resize(p.size());
+        for (std::size_t s = 0; s < p.size(); ++s) gamma[s] = strain_.shear[p.id[s]];
+    }
+    render_output_pictures({&p, interval_done ? &disp : nullptr, S(), gamma.empty() ? nullptr : &gamma, &fault_lines_},
+                           view_, dir_ + "/figures", name);
 }
 
 // The paper's plates are infinite slabs ([40]): once the raised surface runs

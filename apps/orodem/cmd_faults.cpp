@@ -31,7 +31,8 @@ int cmd_faults(const std::string& run_dir, double at, bool csv, bool recompute) 
                                          "2 (thrusting has propagated into the proside plate)",
                                          "3 (retrowedge accretion)"};
     fmt::print("faults of {} at S = {:.3f}{}\n", run_dir, S, f.from_snapshots ? " (computed from the snapshots)" : "");
-    fmt::print("stage {}\n", kStage[classify_stage(faults, 1.0)]);
+    fmt::print("this output's faults show stage {} (series.csv: the stage reached)\n",
+               kStage[classify_stage(faults, 1.0)]);
     fmt::print("active: {} pro-vergent, {} retro-vergent; frontal thrust root at {} h0 from the S point\n", n.pro,
                n.retro, std::isnan(n.front_x) ? std::string("-") : fmt::format("{:.2f}", n.front_x));
     fmt::print("{:>4}  {:<6} {:>6} {:>8} {:>10} {:>10} {:>9} {:>9} {:>10} {:>9} {:>8} {:>8}\n", "id", "verg.",

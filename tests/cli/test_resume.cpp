@@ -206,7 +206,7 @@ TEST_F(Resume, FaultsPrintsTheTableAndComputesTheSameOneFromTheSnapshots) {
     EXPECT_EQ(again.out, table);
     const Result at = run_orodem({"faults", reference_.string(), "--at", "0.3"});
     ASSERT_EQ(at.status, 0) << at.err;
-    EXPECT_HAS(at.out, "at S = 0.300\nstage ");
+    EXPECT_HAS(at.out, "at S = 0.300\nthis output's faults show stage ");
     EXPECT_HAS(at.out, "pro-vergent");
     fs::create_directories(root_ / "not-a-run");
     const Result bad = run_orodem({"faults", (root_ / "not-a-run").string()});

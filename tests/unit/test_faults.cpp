@@ -149,3 +149,16 @@ TEST(Strain, AccumulatedGradientsMultiplyInOrder) {
     EXPECT_DOUBLE_EQ(total[1].xx, 1.0);
     EXPECT_NEAR(strain_measures(total[0]).shear, std::sqrt(std::pow(0.16 / 4.0, 2) + 0.16 / 4.0), 1e-15);
 }
+
+TEST(Faults, AStageCountsOnceTwoOutputsInARowShowItAndIsKept) {
+    // Per-output stages 1 1 2 1 2 2 3 2 1: reached 1 from the second output,
+    // 2 from the sixth, never 3 (one output only), and never back.
+    const int per_output[] = {1, 1, 2, 1, 2, 2, 3, 2, 1};
+    const int want[] = {0, 1, 1, 1, 1, 2, 2, 2, 2};
+    int reached = 0, last = 0;
+    for (std::size_t k = 0; k < std::size(per_output); ++k) {
+        reached = stage_reached(reached, last, per_output[k]);
+        last = per_output[k];
+        EXPECT_EQ(reached, want[k]) << "output " << k;
+    }
+}

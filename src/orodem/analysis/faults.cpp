@@ -295,6 +295,8 @@ int classify_stage(const std::vector<Fault>& faults, double h0) {
     return 1;
 }
 
+int stage_reached(int reached, int last, int now) { return std::max(reached, std::min(now, last)); }
+
 FaultCounts count_faults(const std::vector<Fault>& faults) {
     FaultCounts c;
     c.front_x = std::numeric_limits<double>::quiet_NaN();

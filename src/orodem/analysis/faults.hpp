@@ -114,6 +114,13 @@ public:
 /// uplift between the shears rooted at the S point).
 int classify_stage(const std::vector<Fault>& faults, double h0);
 
+/// The stage reached by an output whose faults give `now` (classify_stage),
+/// after outputs that reached `reached` and whose last gave `last`: a stage
+/// counts once two consecutive outputs show it (or a later one), and is kept
+/// (the stages are an evolution; one output's detection is noisy):
+/// max(reached, min(now, last)).
+int stage_reached(int reached, int last, int now);
+
 /// Active pro- and retro-vergent faults, and the root x of the most proside
 /// active pro-vergent fault (the frontal thrust; NaN when none) [m].
 struct FaultCounts {

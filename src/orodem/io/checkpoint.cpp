@@ -212,6 +212,8 @@ std::string encode_checkpoint(const Simulation& sim, const RunLoopState& run, st
     w.put(run.faults_bytes);
     w.put(static_cast<std::uint64_t>(run.faults.size()));
     for (const Fault& f : run.faults) put_fault(w, f);
+    w.put(run.stage);
+    w.put(run.stage_last_output);
     put_tag(w, "end");
 
     const std::string& payload = w.bytes();
@@ -356,6 +358,8 @@ void decode_checkpoint(std::string_view bytes, AcceptedHashes expected_config_ha
             const auto nf = r.get<std::uint64_t>();
             if (nf > h.payload.size()) bad("fault count out of range");
             for (std::uint64_t k = 0; k < nf; ++k) run.faults.push_back(get_fault(r));
+            r.get(run.stage);
+            r.get(run.stage_last_output);
         }
         expect_tag(r, "end");
         if (r.remaining() != 0) bad(fmt::format("{} bytes left over", r.remaining()));

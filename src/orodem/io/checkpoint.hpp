@@ -57,6 +57,8 @@ struct RunLoopState {
     std::vector<Fault> faults;                          // every fault found so far (FaultTracker::known)
     std::int64_t next_fault_id = 1;                     // FaultTracker::next_id
     std::uint64_t faults_bytes = 0;                     // faults.csv length [bytes]
+    std::int32_t stage = 0;                             // the stage reached (stage_reached)
+    std::int32_t stage_last_output = 0;                 // classify_stage of the last output
 };
 
 /// FNV-1a 64 of the resolved config without the keys at their defaults

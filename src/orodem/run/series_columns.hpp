@@ -36,7 +36,7 @@ struct SeriesRow {
     int pro_faults = 0;                // active pro-vergent faults (analysis/faults.hpp) [-]
     int retro_faults = 0;              // active retro-vergent faults [-]
     double front_thrust_x = 0.0;       // root x of the most proside active pro-vergent fault (NaN: none) [m]
-    int stage = 0;                     // the paper's stage, classify_stage [-]
+    int stage = 0;                     // the paper's stage reached, stage_reached [-]
 };
 
 enum class ColumnFormat {

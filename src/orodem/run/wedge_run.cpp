@@ -298,7 +298,10 @@ void WedgeRun::measure_structures() {
     st_.next_fault_id = tracker.next_id;
     fault_counts_ = count_faults(all);
     fault_lines_ = active_fault_lines(all, 1.0);
-    stage_ = classify_stage(all, h0_);
+    const int now = classify_stage(all, h0_);
+    st_.stage = stage_reached(st_.stage, st_.stage_last_output, now);
+    st_.stage_last_output = now;
+    stage_ = st_.stage;
     for (const Fault& f : all) faults_file_.line(faults_line(S(), f, h0_));
 }
 

@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include "orodem/analysis/calibration_measures.hpp"  // fit_line
+
 namespace orodem {
 
 namespace {
@@ -120,16 +122,14 @@ WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, dou
     std::vector<double> top_x;
     const std::vector<double> top = surface_with_x(p, pp, top_x);
     const int n = static_cast<int>(top.size());
-    int peak = -1;
+    int highest = -1;
     for (int c = 0; c < n; ++c)
         if (top[static_cast<std::size_t>(c)] != kEmpty &&
-            (peak < 0 || top[static_cast<std::size_t>(c)] > top[static_cast<std::size_t>(peak)]))
-            peak = c;
-    if (peak < 0) return m;
-    // The highest point is the surface particle of the peak column.
-    const double peak_x = top_x[static_cast<std::size_t>(peak)];
-    m.H_over_h0 = std::max(0.0, top[static_cast<std::size_t>(peak)] - pp.y_mean) / pp.h0;
-    m.peak_dx_over_h0 = (peak_x - pp.x_s) / pp.h0;
+            (highest < 0 || top[static_cast<std::size_t>(c)] > top[static_cast<std::size_t>(highest)]))
+            highest = c;
+    if (highest < 0) return m;
+    // H: the highest surface particle.
+    m.H_over_h0 = std::max(0.0, top[static_cast<std::size_t>(highest)] - pp.y_mean) / pp.h0;
 
     // Smoothed surface (three-column mean of the non-empty columns).
     std::vector<double> smooth(static_cast<std::size_t>(n), kEmpty);
@@ -145,11 +145,50 @@ WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, dou
         }
         if (k) smooth[static_cast<std::size_t>(c)] = s / k;
     }
-    const double level = pp.y_mean + pp.toe_threshold;
-    auto above = [&](int c) { return smooth[static_cast<std::size_t>(c)] != kEmpty && smooth[static_cast<std::size_t>(c)] > level; };
-    int toe_pro = peak, toe_retro = peak;
-    while (toe_pro - 1 >= 0 && above(toe_pro - 1)) --toe_pro;
-    while (toe_retro + 1 < n && above(toe_retro + 1)) ++toe_retro;
+    // The peak: the highest column of the smoothed surface (one grain on a
+    // second summit does not move it), at its surface particle's x.
+    int peak = highest;
+    for (int c = 0; c < n; ++c)
+        if (smooth[static_cast<std::size_t>(c)] != kEmpty && top[static_cast<std::size_t>(c)] != kEmpty &&
+            smooth[static_cast<std::size_t>(c)] > smooth[static_cast<std::size_t>(peak)])
+            peak = c;
+    m.peak_dx_over_h0 = (top_x[static_cast<std::size_t>(peak)] - pp.x_s) / pp.h0;
+
+    // The plate's surface on each side: the most common height of the
+    // smoothed surface between the domain's end and the peak (bins of
+    // toe_threshold / 2; the median of the modal bin and its neighbours). The
+    // incoming plate is the largest flat stretch; a flank spreads over all
+    // heights. Unlike y_mean it follows a plate thickened or thinned as a
+    // whole, and the long low tail of a gentle flank does not lift it.
+    auto plate_level = [&](int from, int to) {
+        std::vector<double> hs;
+        for (int c = std::min(from, to); c <= std::max(from, to); ++c)
+            if (smooth[static_cast<std::size_t>(c)] != kEmpty) hs.push_back(smooth[static_cast<std::size_t>(c)]);
+        const double window = std::max(0.5 * pp.toe_threshold, 1e-9 * pp.h0);
+        if (hs.size() < 3) return pp.y_mean;
+        std::sort(hs.begin(), hs.end());
+        std::size_t best_count = 0;
+        double best_lo = hs.front();
+        for (std::size_t i = 0, j = 0; i < hs.size(); ++i) {  // window [hs[i], hs[i] + window)
+            while (j < hs.size() && hs[j] < hs[i] + window) ++j;
+            if (j - i > best_count) best_count = j - i, best_lo = hs[i];
+        }
+        std::vector<double> modal;
+        for (double h : hs)
+            if (h >= best_lo && h < best_lo + window) modal.push_back(h);
+        return modal[modal.size() / 2];
+    };
+    m.level_pro = plate_level(0, peak);
+    m.level_retro = plate_level(peak, n - 1);
+    // Toes: walking out from the peak while the smoothed surface stays above
+    // the plate's surface + toe_threshold.
+    auto walk = [&](double level, int dir) {
+        int c = peak;
+        auto above = [&](int k) { return smooth[static_cast<std::size_t>(k)] != kEmpty && smooth[static_cast<std::size_t>(k)] > level; };
+        while (c + dir >= 0 && c + dir < n && above(c + dir)) c += dir;
+        return c;
+    };
+    const int toe_pro = walk(m.level_pro + pp.toe_threshold, -1), toe_retro = walk(m.level_retro + pp.toe_threshold, +1);
     m.toe_pro_x = column_centre(pp, toe_pro);
     m.toe_retro_x = column_centre(pp, toe_retro);
 
@@ -160,17 +199,30 @@ WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, dou
                 ys.push_back(top[static_cast<std::size_t>(c)]);
             }
     };
-    auto taper = [&](int a, int b) {
-        std::vector<double> xs, ys;
+    // A flank's taper: the line through its surface points between 20% and
+    // 80% of its relief above the plate ahead of its toe (the rounded top
+    // and the toe, where pop-ups and slumps sit, left out), or through all
+    // of them when fewer than three lie there; with the slope's standard
+    // error, in degrees.
+    const double top_y = top[static_cast<std::size_t>(peak)];
+    auto taper = [&](int a, int b, double level, double* se_deg) {
+        std::vector<double> xs, ys, fx, fy;
         surface_points(a, b, xs, ys);
+        *se_deg = nan;
         if (xs.size() < 3) return nan;
-        return std::atan(fit_slope(xs, ys)) * 180.0 / std::numbers::pi;
+        const double lo = level + 0.2 * (top_y - level), hi = level + 0.8 * (top_y - level);
+        for (std::size_t k = 0; k < xs.size(); ++k)
+            if (ys[k] >= lo && ys[k] <= hi) fx.push_back(xs[k]), fy.push_back(ys[k]);
+        const LineFit f = fx.size() >= 3 ? fit_line(fx, fy) : fit_line(xs, ys);
+        *se_deg = f.slope_se / (1.0 + f.slope * f.slope) * 180.0 / std::numbers::pi;
+        return std::atan(f.slope) * 180.0 / std::numbers::pi;
     };
     int alpha_end = peak;
     if (!pp.retro_side)
         while (alpha_end > toe_pro && column_centre(pp, alpha_end) > pp.x_max - pp.backstop_margin) --alpha_end;
-    m.alpha_deg = toe_pro < alpha_end ? taper(toe_pro, alpha_end) : nan;
-    m.beta_deg = (pp.retro_side && toe_retro > peak) ? -taper(peak, toe_retro) : nan;
+    m.alpha_deg = m.alpha_se_deg = m.beta_se_deg = nan;
+    if (toe_pro < alpha_end) m.alpha_deg = taper(toe_pro, alpha_end, m.level_pro, &m.alpha_se_deg);
+    m.beta_deg = (pp.retro_side && toe_retro > peak) ? -taper(peak, toe_retro, m.level_retro, &m.beta_se_deg) : nan;
     if (std::isnan(m.beta_deg)) m.beta_deg = nan;  // never "-nan" in series.csv
     m.beta_inner_deg = m.beta_outer_deg = m.retro_break_x = nan;
     if (pp.retro_side && toe_retro > peak) {

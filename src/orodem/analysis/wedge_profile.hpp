@@ -4,13 +4,18 @@
 // Surface: the domain [x_min, x_max) is cut into columns of width δx; a
 // column's surface particle is its highest disc centre (y_i). y_mean is the
 // undeformed surface height, measured once on the incoming layer.
-// Peak: the column with the highest surface. Toes: walking outward from the
-// peak, the last column of the contiguous run whose surface (smoothed over
-// three columns) stays above y_mean + toe_threshold. α (prowedge, x < peak)
-// and β (retrowedge, x > peak): least-squares lines through the surface
-// centroids (x_i, y_i of each column's surface particle) from each toe to the
-// peak, in degrees (α = atan slope, β = −atan slope). H = (highest surface
-// centre − y_mean), peak deviation = x of that particle − x_S, both / h0. Dilation D = 100 A_w / A_s with
+// Peak: the column with the highest surface smoothed over three columns (a
+// grain on a second summit does not move it). Toes: walking outward from the
+// peak, the last column of the contiguous run whose smoothed surface stays
+// above a level + toe_threshold: first y_mean, then the plate's own surface
+// between h0/2 and 2 h0 beyond that toe (a thickened or tilted plate is not
+// taken for wedge). α (prowedge, x < peak) and β (retrowedge, x > peak):
+// least-squares lines through the surface centroids (x_i, y_i of each
+// column's surface particle) between toe and peak that lie between 20% and
+// 80% of the flank's relief above its plate (all of them when fewer than
+// three do), in degrees (α = atan slope, β = −atan slope), with the slope's
+// standard error. H = (highest surface centre − y_mean) / h0, peak
+// deviation = (x of the peak column's surface particle − x_S) / h0. Dilation D = 100 A_w / A_s with
 // A_w = δx Σ (y_surface − y_mean) between the toes and A_s = shortening · h0.
 // Retroside in two pieces (Experiment 3's second, shallower retrowedge, [52]):
 // the same retroside surface points, peak to toe, split into an inner and an
@@ -52,6 +57,10 @@ struct WedgeMeasures {
     double beta_inner_deg = 0.0;   // retroside slope, peak to the break [deg] (NaN if too short)
     double beta_outer_deg = 0.0;   // retroside slope, break to the toe [deg] (NaN if too short)
     double retro_break_x = 0.0;    // x of the break [m] (NaN if too short)
+    double alpha_se_deg = 0.0;     // standard error of α's fit [deg] (NaN with fewer than 3 points)
+    double beta_se_deg = 0.0;      // standard error of β's fit [deg]
+    double level_pro = 0.0;        // surface of the plate ahead of the prowedge toe [m]
+    double level_retro = 0.0;      // surface of the plate ahead of the retrowedge toe [m]
 };
 
 /// Per-column surface heights (highest disc centre; -inf for an empty column).

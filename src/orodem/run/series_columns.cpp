@@ -38,6 +38,8 @@ const std::vector<SeriesColumn> kColumns = {
     {"active_retro_faults", F::integer, [](const SeriesRow& r) { return static_cast<double>(r.retro_faults); }, false},
     {"front_thrust_x_over_h0", F::g6, [](const SeriesRow& r) { return r.front_thrust_x / r.h0; }, false},
     {"stage", F::integer, [](const SeriesRow& r) { return static_cast<double>(r.stage); }, false},
+    {"alpha_se_deg", F::g6, [](const SeriesRow& r) { return r.m.alpha_se_deg; }, true},
+    {"beta_se_deg", F::g6, [](const SeriesRow& r) { return r.m.beta_se_deg; }, true},
 };
 
 void append(std::string& out, ColumnFormat f, double v) {

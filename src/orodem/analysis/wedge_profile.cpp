@@ -145,13 +145,11 @@ WedgeMeasures measure_wedge(const ParticleStore& p, const ProfileParams& pp, dou
         }
         if (k) smooth[static_cast<std::size_t>(c)] = s / k;
     }
-    // The peak: the highest column of the smoothed surface (one grain on a
-    // second summit does not move it), at its surface particle's x.
-    int peak = highest;
-    for (int c = 0; c < n; ++c)
-        if (smooth[static_cast<std::size_t>(c)] != kEmpty && top[static_cast<std::size_t>(c)] != kEmpty &&
-            smooth[static_cast<std::size_t>(c)] > smooth[static_cast<std::size_t>(peak)])
-            peak = c;
+    // The peak: the highest column. (Its smoothed surface's highest column
+    // was tried: on six intermediate exp1 runs it moved the split between the
+    // flanks across flat tops and doubled β's largest change between
+    // outputs, 3.2° to 6.2°; docs/physics.md "Wedge measures".)
+    const int peak = highest;
     m.peak_dx_over_h0 = (top_x[static_cast<std::size_t>(peak)] - pp.x_s) / pp.h0;
 
     // The plate's surface on each side: the most common height of the

@@ -4,8 +4,7 @@
 // Surface: the domain [x_min, x_max) is cut into columns of width δx; a
 // column's surface particle is its highest disc centre (y_i). y_mean is the
 // undeformed surface height, measured once on the incoming layer.
-// Peak: the column with the highest surface smoothed over three columns (a
-// grain on a second summit does not move it). Toes: walking outward from the
+// Peak: the column with the highest surface. Toes: walking outward from the
 // peak, the last column of the contiguous run whose smoothed surface stays
 // above a level + toe_threshold: first y_mean, then the plate's own surface
 // between h0/2 and 2 h0 beyond that toe (a thickened or tilted plate is not

@@ -69,6 +69,8 @@ TEST(ConfigCalibrate, DefaultsResolve) {
     EXPECT_DOUBLE_EQ(b.calibrate.duration, 80.0);
     const Config slow = parse_config(head("basal-friction"), "calib.toml", {{"calibrate.belt_speed", "0.025"}});
     EXPECT_DOUBLE_EQ(slow.calibrate.duration, 320.0);
+    const Config fast = parse_config(head("basal-friction"), "calib.toml", {{"calibrate.belt_speed", "0.4"}});
+    EXPECT_DOUBLE_EQ(fast.calibrate.duration, 80.0);  // min_duration
     const Config fixed = parse_config(head("basal-friction"), "calib.toml",
                                       {{"calibrate.belt_speed", "0.025"}, {"calibrate.duration", "50.0"}});
     EXPECT_DOUBLE_EQ(fixed.calibrate.duration, 50.0);

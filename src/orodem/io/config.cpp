@@ -228,11 +228,13 @@ void read_calibrate(Config& c, Section&& section, const std::string& file, bool 
             k.traction_gain = r.number("traction_gain", k.traction_gain, {0.0, 1.5, true, false});
         else
             refuse_traction_keys(r, in, "calibrate", {"traction_gain"});
-        // The block reaches steady sliding after a belt displacement, not a
-        // time (docs/validation.md): the run is a belt travel by default.
+        // The block reaches steady sliding after a belt displacement and a
+        // time (docs/validation.md): the run is a belt travel by default, and
+        // at least min_duration long.
         k.belt_travel = r.number("belt_travel", k.belt_travel, positive());
+        k.min_duration = r.number("min_duration", k.min_duration, non_negative());
         k.duration = r.number("duration", k.duration, non_negative());
-        if (k.duration == 0.0) k.duration = k.belt_travel / k.belt_speed;
+        if (k.duration == 0.0) k.duration = std::max(k.belt_travel / k.belt_speed, k.min_duration);
         k.measure_from = r.number("measure_from", k.measure_from, {0.0, 1.0, false, true});
     } else {  // repose
         k.column_width = size("column_width", k.column_width, 4.0);

@@ -104,7 +104,8 @@ struct CalibrateConfig {
     std::string base_law = "coulomb";      // coulomb | traction, as wedge.base_law
     double traction_gain = 1.0;            // traction only: g_b in the eq. 5 traction γ_b = g_b m_i / dt [-]
     double belt_travel = 8.0;              // belt displacement of the run [m] (duration = belt_travel / belt_speed)
-    double duration = 0.0;                 // belt running time [s]; 0: belt_travel / belt_speed
+    double min_duration = 80.0;            // ... but at least this long [s]
+    double duration = 0.0;                 // belt running time [s]; 0: max(belt_travel / belt_speed, min_duration)
     double measure_from = 0.5;             // the measurement averages over t in [measure_from · duration, duration] [-]
     // repose: a column released by lifting its side walls onto a floor of fixed discs
     double column_width = 20.0;            // column width [m]

@@ -4,7 +4,8 @@
 // outlines); every font is at least 0.85/60 of the figure's width (the tick
 // labels; everything else 1/60 or more), at any width; a PNG has the pixel
 // size the plots had before they moved to the canvas (1400 x 976 for one run
-// with a title, computed by the old code); PDF starts as a PDF.
+// with a title, computed by the old code); PDF starts as a PDF; crowded x
+// tick labels are thinned to every 2nd (5th, 10th) tick.
 #include <gtest/gtest.h>
 
 #include <cairo.h>
@@ -176,5 +177,22 @@ TEST(Plots, SeedBandIsShadedInThePlotAndTheLegend) {
     for (auto p = svg.find("fill-opacity=\"0.200\""); p != std::string::npos; p = svg.find("fill-opacity=\"0.200\"", p + 1))
         ++n;
     EXPECT_EQ(n, 6u + 1u);
+    fs::remove_all(dir);
+}
+
+TEST(Plots, CrowdedTickLabelsAreThinned) {
+    // x from 0 to 0.05 in steps of 0.005 on a half-width panel: labels at
+    // 0.01, 0.02, ... only, none overlapping; at full width all of them.
+    const fs::path dir = scratch_dir("ticks");
+    PlotPanel panel{"Stress ratio", "axial strain ε_a", "σ_1 / σ_3", {}};
+    panel.curves.push_back({{0, 0.025, 0.05}, {1, 2, 2.5}, "μ_i = 0.3", 0, false, false});
+    plot_panels({panel, panel}, 2, "", (dir / "half.svg").string(), 1400);
+    const std::string half = slurp(dir / "half.svg");
+    EXPECT_TRUE(has_text(half, "0.01"));
+    EXPECT_TRUE(has_text(half, "0.05"));
+    EXPECT_FALSE(has_text(half, "0.005"));
+    EXPECT_FALSE(has_text(half, "0.045"));
+    plot_panels({panel}, 1, "", (dir / "full.svg").string(), 1400);
+    EXPECT_TRUE(has_text(slurp(dir / "full.svg"), "0.005"));
     fs::remove_all(dir);
 }

@@ -137,13 +137,28 @@ Figure figure_layout(int width_px, int columns, int rows, double aspect, bool ti
 
 void draw_grid(Canvas& c, const Figure& f, const Area& a, bool x_ticks, bool marks) {
     const double size = kTick * f.F, mark = 0.25 * f.F, lw = f.lw(1.0);
+    // Every x tick gets its line; labels at every `every`-th tick so that
+    // they stay half a font apart (1, 2 or 5: a multiple of the step).
+    std::vector<double> xt;
     for (int k = 0; x_ticks; ++k) {
         const double t = a.xr.lo + k * a.xr.step;
         if (t > a.xr.hi + 1e-9 * a.xr.step) break;
-        const double x = a.px(t);
+        xt.push_back(t);
+    }
+    double widest = 0.0;
+    for (double t : xt) widest = std::max(widest, text_width(tick_label(t, a.xr.step), size));
+    const double spacing = a.w * a.xr.step / (a.xr.hi - a.xr.lo);
+    int every = 1;
+    for (int e : {1, 2, 5, 10})
+        if ((every = e) * spacing >= widest + 0.5 * f.F) break;
+    for (std::size_t k = 0; k < xt.size(); ++k) {
+        const double x = a.px(xt[k]);
         c.line(x, a.y0, x, a.y0 + a.h, kGrid, lw);
         if (marks) c.line(x, a.y0 + a.h, x, a.y0 + a.h + mark, kBlack, lw);
-        c.text(tick_label(t, a.xr.step), x, a.y0 + a.h + 0.45 * f.F, size, HAlign::centre, VAlign::top);
+        // Labels on multiples of every steps (from 0 where the axis holds it).
+        const long n = std::lround(xt[k] / a.xr.step);
+        if (n % every == 0)
+            c.text(tick_label(xt[k], a.xr.step), x, a.y0 + a.h + 0.45 * f.F, size, HAlign::centre, VAlign::top);
     }
     for (int k = 0;; ++k) {
         const double t = a.yr.lo + k * a.yr.step;

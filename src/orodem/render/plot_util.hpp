@@ -95,6 +95,7 @@ Figure figure_layout(int width_px, int columns, int rows, double aspect, bool ti
 
 /// Light grid lines (a darker zero line), tick labels and, with `marks`,
 /// tick marks for the area; vertical lines and x labels only with `x_ticks`.
+/// Where the x labels would crowd, only every 2nd (5th, 10th) tick is labelled.
 void draw_grid(Canvas& c, const Figure& f, const Area& a, bool x_ticks, bool marks);
 
 /// The area's black frame, its title (bold) above its left end, the x label

@@ -1,6 +1,8 @@
 // Plots of the calibration report (orodem calibrate; setup/calibration.hpp),
-// drawn with Cairo into PNG files written atomically: panels of x-y curves
-// with one shared legend, and grouped bar charts with error bars.
+// drawn on a Canvas (render/canvas.hpp, laid out by render/plot_util.hpp:
+// fonts 1/60 of the width) into files written atomically, PNG, SVG or PDF
+// by the path's extension: panels of x-y curves with one shared legend, and
+// grouped bar charts with error bars.
 #pragma once
 
 #include <string>
@@ -22,7 +24,8 @@ struct PlotPanel {
 };
 
 /// Panels in a grid of `columns` columns, a title line (may be empty) and a
-/// legend of the labelled curves. Throws IoError when path cannot be written.
+/// legend of the labelled curves. Throws ConfigError when the path's
+/// extension is not .png, .svg or .pdf, IoError when it cannot be written.
 void plot_panels(const std::vector<PlotPanel>& panels, int columns, const std::string& title,
                  const std::string& path, int width_px = 1400);
 

@@ -10,13 +10,18 @@
 #include <fmt/format.h>
 
 #include "orodem/core/error.hpp"
-#include "orodem/render/plot_util.hpp"
 
 namespace orodem {
 
 namespace {
 
 constexpr const char* kFontFamily = "sans-serif";
+
+/// cairo write function appending to the std::string* closure.
+cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length) {
+    static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+    return CAIRO_STATUS_SUCCESS;
+}
 
 void select_font(cairo_t* cr, double size, bool bold) {
     cairo_select_font_face(cr, kFontFamily, CAIRO_FONT_SLANT_NORMAL,
@@ -34,7 +39,7 @@ double baseline_offset(VAlign v, double size) {
 class CairoCanvas final : public Canvas {
 public:
     CairoCanvas(const std::string& format, int width, int height) : format_(format) {
-        surface_ = format == "pdf" ? cairo_pdf_surface_create_for_stream(plot::append_bytes, &bytes_, width, height)
+        surface_ = format == "pdf" ? cairo_pdf_surface_create_for_stream(append_bytes, &bytes_, width, height)
                                    : cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
         if (cairo_surface_status(surface_) != CAIRO_STATUS_SUCCESS)
             throw IoError(fmt::format("cannot create a {} x {} picture: {}", width, height,
@@ -56,20 +61,29 @@ public:
         cairo_arc(cr_, x, y, r, 0, 2 * std::numbers::pi);
         cairo_fill(cr_);
     }
-    void polygon(const std::vector<double>& xy, Colour c) override {
+    void ring(double x, double y, double r, Colour c, double width) override {
         set(c);
-        for (std::size_t k = 0; k + 1 < xy.size(); k += 2)
-            k == 0 ? cairo_move_to(cr_, xy[k], xy[k + 1]) : cairo_line_to(cr_, xy[k], xy[k + 1]);
+        cairo_set_line_width(cr_, width);
+        cairo_new_sub_path(cr_);
+        cairo_arc(cr_, x, y, r, 0, 2 * std::numbers::pi);
+        cairo_stroke(cr_);
+    }
+    void polygon(const std::vector<double>& xy, Colour c, double opacity) override {
+        cairo_set_source_rgba(cr_, c.r, c.g, c.b, opacity);
+        path(xy);
         cairo_close_path(cr_);
         cairo_fill(cr_);
     }
     void line(double x0, double y0, double x1, double y1, Colour c, double width, bool dashed) override {
+        polyline({x0, y0, x1, y1}, c, width, dashed);
+    }
+    void polyline(const std::vector<double>& xy, Colour c, double width, bool dashed) override {
         set(c);
         cairo_set_line_width(cr_, width);
+        cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
         const double dash = 3 * width;
         cairo_set_dash(cr_, &dash, dashed ? 1 : 0, 0);
-        cairo_move_to(cr_, x0, y0);
-        cairo_line_to(cr_, x1, y1);
+        path(xy);
         cairo_stroke(cr_);
         cairo_set_dash(cr_, nullptr, 0, 0);
     }
@@ -107,7 +121,7 @@ public:
         cairo_destroy(cr_);
         cr_ = nullptr;
         cairo_status_t st = CAIRO_STATUS_SUCCESS;
-        if (format_ == "png") st = cairo_surface_write_to_png_stream(surface_, plot::append_bytes, &bytes_);
+        if (format_ == "png") st = cairo_surface_write_to_png_stream(surface_, append_bytes, &bytes_);
         cairo_surface_finish(surface_);
         if (st == CAIRO_STATUS_SUCCESS) st = cairo_surface_status(surface_);
         cairo_surface_destroy(surface_);
@@ -119,6 +133,10 @@ public:
 
 private:
     void set(Colour c) { cairo_set_source_rgb(cr_, c.r, c.g, c.b); }
+    void path(const std::vector<double>& xy) {
+        for (std::size_t k = 0; k + 1 < xy.size(); k += 2)
+            k == 0 ? cairo_move_to(cr_, xy[k], xy[k + 1]) : cairo_line_to(cr_, xy[k], xy[k + 1]);
+    }
     std::string format_;
     std::string bytes_;  // the PDF or PNG stream
     cairo_surface_t* surface_ = nullptr;
@@ -155,16 +173,22 @@ public:
     void disc(double x, double y, double r, Colour c) override {
         out_ += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.2f}\" fill=\"{}\"/>\n", x, y, r, hex(c));
     }
-    void polygon(const std::vector<double>& xy, Colour c) override {
-        out_ += "<polygon points=\"";
-        for (std::size_t k = 0; k + 1 < xy.size(); k += 2) out_ += fmt::format("{}{:.2f},{:.2f}", k ? " " : "", xy[k], xy[k + 1]);
-        out_ += fmt::format("\" fill=\"{}\"/>\n", hex(c));
+    void ring(double x, double y, double r, Colour c, double width) override {
+        out_ += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.2f}\" fill=\"none\" stroke=\"{}\" "
+                            "stroke-width=\"{:.2f}\"/>\n",
+                            x, y, r, hex(c), width);
+    }
+    void polygon(const std::vector<double>& xy, Colour c, double opacity) override {
+        out_ += "<polygon points=\"" + points(xy) + fmt::format("\" fill=\"{}\"", hex(c));
+        out_ += opacity < 1.0 ? fmt::format(" fill-opacity=\"{:.3f}\"/>\n", opacity) : std::string("/>\n");
     }
     void line(double x0, double y0, double x1, double y1, Colour c, double width, bool dashed) override {
-        out_ += fmt::format("<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"{}\" "
-                            "stroke-width=\"{:.2f}\"{}/>\n",
-                            x0, y0, x1, y1, hex(c), width,
-                            dashed ? fmt::format(" stroke-dasharray=\"{:.2f}\"", 3 * width) : std::string());
+        out_ += fmt::format("<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\"{}/>\n", x0, y0, x1, y1,
+                            stroke(c, width, dashed));
+    }
+    void polyline(const std::vector<double>& xy, Colour c, double width, bool dashed) override {
+        out_ += "<polyline points=\"" + points(xy) + "\" fill=\"none\"" + stroke(c, width, dashed) +
+                " stroke-linejoin=\"round\"/>\n";
     }
     void fill_rect(double x, double y, double w, double h, Colour c) override {
         out_ += fmt::format("<rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" height=\"{:.2f}\" fill=\"{}\"/>\n", x,
@@ -198,6 +222,15 @@ public:
     }
 
 private:
+    static std::string points(const std::vector<double>& xy) {
+        std::string p;
+        for (std::size_t k = 0; k + 1 < xy.size(); k += 2) p += fmt::format("{}{:.2f},{:.2f}", k ? " " : "", xy[k], xy[k + 1]);
+        return p;
+    }
+    static std::string stroke(Colour c, double width, bool dashed) {
+        return fmt::format(" stroke=\"{}\" stroke-width=\"{:.2f}\"{}", hex(c), width,
+                           dashed ? fmt::format(" stroke-dasharray=\"{:.2f}\"", 3 * width) : std::string());
+    }
     std::string out_;
     int clips_ = 0;
 };

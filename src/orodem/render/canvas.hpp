@@ -1,5 +1,7 @@
-// A small drawing surface for the particle pictures (render/particle_view,
-// render/figure): discs, polygons, lines, rectangles and text, in pixels
+// A small drawing surface for the particle pictures (render/particle_view)
+// and the plots (render/plots, render/calibration_plots through
+// render/plot_util): discs, rings, polygons, lines, polylines, rectangles
+// and text, in pixels
 // with y down, into PNG or PDF through Cairo, or into SVG through a writer
 // of our own.
 //
@@ -36,10 +38,16 @@ public:
     virtual ~Canvas() = default;
     /// A filled disc, centre (x, y), radius r [px].
     virtual void disc(double x, double y, double r, Colour c) = 0;
-    /// A filled polygon through the points (x0, y0, x1, y1, ...) [px].
-    virtual void polygon(const std::vector<double>& xy, Colour c) = 0;
+    /// A circle's outline, centre (x, y), radius r, line width [px].
+    virtual void ring(double x, double y, double r, Colour c, double width) = 0;
+    /// A filled polygon through the points (x0, y0, x1, y1, ...) [px], at
+    /// the given opacity (1: opaque).
+    virtual void polygon(const std::vector<double>& xy, Colour c, double opacity = 1.0) = 0;
     /// A straight line of the given width [px]; dashed: 3 widths on, 3 off.
     virtual void line(double x0, double y0, double x1, double y1, Colour c, double width, bool dashed = false) = 0;
+    /// An open line through the points (x0, y0, x1, y1, ...) [px] with round
+    /// joins; dashed as line().
+    virtual void polyline(const std::vector<double>& xy, Colour c, double width, bool dashed = false) = 0;
     /// A filled rectangle (x, y, w, h) [px].
     virtual void fill_rect(double x, double y, double w, double h, Colour c) = 0;
     /// A rectangle's outline of the given width [px].

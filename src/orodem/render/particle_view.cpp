@@ -63,7 +63,7 @@ struct Layout {
 Layout layout(const ViewOptions& o, std::size_t panels) {
     Layout L;
     L.width = o.width_px;
-    L.F = std::max(12.0, o.width_px / 60.0);
+    L.F = plot::font_size(o.width_px);
     L.left = 3.4 * L.F;
     L.right = 1.2 * L.F;
     L.head = 3.2 * L.F;

@@ -1,12 +1,14 @@
 // Plots of the wedge measurements against the shortening S, several runs
-// overlaid (SPEC §3; paper Figures 10, 11, 14, 15), drawn with Cairo. Four
-// panels: taper angles α (solid) and β (dashed), H/h0, peak deviation
-// (x_peak − x_S)/h0 and dilation D (%), each against S; one colour per run
-// and a legend with the runs' labels. NaN values (no wedge yet) leave gaps.
-// A run may carry a band (e.g. the lowest and highest values over packing
-// seeds, `orodem plot --seeds`), shaded in its colour behind its curves.
-// Format from the extension (.svg, .pdf, otherwise PNG); the file is written
-// atomically.
+// overlaid (SPEC §3; paper Figures 10, 11, 14, 15), drawn on a Canvas
+// (render/canvas.hpp, laid out by render/plot_util.hpp: fonts 1/60 of the
+// width). Four panels: taper angles α (solid) and β (dashed), H/h0, peak
+// deviation (x_peak − x_S)/h0 and dilation D (%), each against S; one
+// colour per run and a legend under the panels naming the two line styles
+// and the runs. NaN values (no wedge yet) leave gaps. A run may carry a band
+// (e.g. the lowest and highest values over packing seeds, `orodem plot
+// --seeds`), shaded in its colour behind its curves and in its legend entry.
+// Format from the extension (.svg with <text> labels, .pdf, otherwise PNG);
+// the file is written atomically.
 #pragma once
 
 #include <string>

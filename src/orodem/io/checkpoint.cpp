@@ -358,8 +358,10 @@ void decode_checkpoint(std::string_view bytes, AcceptedHashes expected_config_ha
             const auto nf = r.get<std::uint64_t>();
             if (nf > h.payload.size()) bad("fault count out of range");
             for (std::uint64_t k = 0; k < nf; ++k) run.faults.push_back(get_fault(r));
-            r.get(run.stage);
-            r.get(run.stage_last_output);
+            if (h.info.version >= 4) {
+                r.get(run.stage);
+                r.get(run.stage_last_output);
+            }
         }
         expect_tag(r, "end");
         if (r.remaining() != 0) bad(fmt::format("{} bytes left over", r.remaining()));

@@ -33,7 +33,7 @@
 
 namespace orodem {
 
-inline constexpr std::uint32_t kCheckpointVersion = 3;  // 2: sleeping-zone ranges; 3: strain and faults
+inline constexpr std::uint32_t kCheckpointVersion = 4;  // 2: sleeping-zone ranges; 3: strain and faults; 4: stage
 inline constexpr std::uint32_t kOldestCheckpointVersion = 2;  // still read (no strain or fault state)
 
 /// A checkpoint that cannot be used: corrupt, truncated, another format

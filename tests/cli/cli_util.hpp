@@ -145,11 +145,13 @@ protected:
         if (!root_.empty()) fs::remove_all(root_, ec);
     }
 
-    /// Runs `orodem ARGS` in work_ (ARGS already shell-quoted where needed);
-    /// stdout and stderr go to files outside work_.
-    Result orodem(const std::string& args) {
+    /// Runs `orodem ARGS` in work_ (ARGS already shell-quoted where needed),
+    /// with the environment assignments `env` (e.g. "ORODEM_ISA=sse2") before
+    /// it; stdout and stderr go to files outside work_.
+    Result orodem(const std::string& args, const std::string& env = "") {
         const fs::path out = capture_ / "stdout", err = capture_ / "stderr";
-        const std::string cmd = "cd " + quote(work_.string()) + " && " + quote(ORODEM_EXE) + " " + args + " >" +
+        const std::string cmd = "cd " + quote(work_.string()) + " && " + env + (env.empty() ? "" : " ") +
+                                quote(ORODEM_EXE) + " " + args + " >" +
                                 quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
         const int raw = std::system(cmd.c_str());
         Result r;

@@ -9,8 +9,6 @@
 // exit 2 and one line.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -26,17 +24,7 @@ namespace {
 class Isa : public OrodemTest {
 protected:
     /// orodem ARGS with ORODEM_ISA=isa in work_.
-    Result with_isa(const std::string& isa, const std::string& args) {
-        const fs::path out = capture_ / "stdout", err = capture_ / "stderr";
-        const std::string cmd = "cd " + quote(work_.string()) + " && ORODEM_ISA=" + quote(isa) + " " + quote(ORODEM_EXE) +
-                                " " + args + " >" + quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
-        const int raw = std::system(cmd.c_str());
-        Result r;
-        r.status = (raw != -1 && WIFEXITED(raw)) ? WEXITSTATUS(raw) : -1;
-        r.out = slurp(out);
-        r.err = slurp(err);
-        return r;
-    }
+    Result with_isa(const std::string& isa, const std::string& args) { return orodem(args, "ORODEM_ISA=" + quote(isa)); }
 };
 
 /// The bytes of a checkpoint from its section `from` up to its section `to`

@@ -332,13 +332,15 @@ bool cpu_runs(KernelIsa isa) {
     return false;
 }
 
-// The version in use: chosen before any thread runs a kernel (the first
-// kernel_isa() or select_kernel_isa(), from main), read-only afterwards.
+// The version select_kernel_isa chose (main calls it before any thread
+// runs a kernel; read-only afterwards), else the best one, found once
+// (a function-local static: safe when the first call is from threads).
 const Kernels* g_kernels = nullptr;
 
 const Kernels& kernels() {
-    if (!g_kernels) g_kernels = &kVersions[static_cast<int>(best_kernel_isa())];
-    return *g_kernels;
+    if (g_kernels) return *g_kernels;
+    static const Kernels& best = kVersions[static_cast<int>(best_kernel_isa())];
+    return best;
 }
 
 }  // namespace

@@ -259,7 +259,7 @@ WedgeMeasures WedgeRun::write_row() {
     r.pro_faults = fault_counts_.pro;
     r.retro_faults = fault_counts_.retro;
     r.front_thrust_x = fault_counts_.front_x;
-    r.stage = stage_;
+    r.stage = st_.stage;
     series_.line(series_line(r, series_columns_));
     const double secs = elapsed();
     const double rate = static_cast<double>(sim_.step_count - rate_from_step_) / std::max(secs - rate_from_secs_, 1e-9);
@@ -301,7 +301,6 @@ void WedgeRun::measure_structures() {
     const int now = classify_stage(all, h0_);
     st_.stage = stage_reached(st_.stage, st_.stage_last_output, now);
     st_.stage_last_output = now;
-    stage_ = st_.stage;
     for (const Fault& f : all) faults_file_.line(faults_line(S(), f, h0_));
 }
 

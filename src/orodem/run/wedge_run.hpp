@@ -92,7 +92,6 @@ private:
     StrainField strain_;                // over the interval ending at this output
     FaultCounts fault_counts_;          // active faults of this output
     std::vector<FaultLine> fault_lines_;  // active faults of this output, drawn on its strain map [m]
-    int stage_ = 0;                     // the paper's stage reached at this output (stage_reached)
     std::uint64_t steps_per_output_ = 1;
     std::uint64_t n_outputs_ = 1;
     std::uint64_t total_steps_ = 1;

@@ -240,7 +240,7 @@ TEST_F(Cli, CheckEstimatesTheWorkOfAWedgeRunFromItsStepsDiscsAndSleeping) {
     const double dt = number_after(on.out, "dt                     = ");
     const double discs = number_after(on.out, "particles generated    = ");
     const double steps = number_after(on.out, "steps to S = 8       = ");
-    EXPECT_NEAR(steps, 8.0 * 55.0 / (0.1 * dt), 1e-3 * steps);
+    EXPECT_NEAR(steps, 8.0 * 55.0 / (0.3 * dt), 1e-3 * steps);  // v' = 0.3 m/s
     const std::size_t open = on.out.find('(', on.out.find("steps to S = 8")) + 1;
     EXPECT_NEAR(std::stod(on.out.substr(open)), steps * discs * 0.8 * 2.0 / 3.0, 2e-3 * steps * discs);
     EXPECT_HAS(on.out, "awake disc-steps)");
@@ -297,7 +297,7 @@ TEST_F(Cli, CheckGivesTheInertialNumberAndWarnsOfAShortPlate) {
     const std::string cfg = quote((fs::path(ORODEM_SOURCE_DIR) / "configs" / "exp1.toml").string());
     const Result ok = orodem("check " + cfg + " --set wedge.mu_bp=0.1");
     ASSERT_EQ(ok.status, 0) << ok.err;
-    EXPECT_NEAR(number_after(ok.out, "inertial number I      = "), 0.1 / 55.0 * 1.5 / std::sqrt(9.81 * 55.0), 5e-3 * 1.17e-4);  // printed to 3 digits
+    EXPECT_NEAR(number_after(ok.out, "inertial number I      = "), 0.3 / 55.0 * 1.5 / std::sqrt(9.81 * 55.0), 5e-3 * 3.52e-4);  // printed to 3 digits
     EXPECT_NEAR(number_after(ok.out, "the deformation front reaches about "),
                 std::sqrt(16.0 / std::tan(2.40 * M_PI / 180.0)), 0.1);
     EXPECT_EQ(ok.err.find("warning"), std::string::npos) << ok.err;
@@ -311,7 +311,7 @@ TEST_F(Cli, CheckGivesTheBasalDragAtFullSlipInColumnWeights) {
     // g_d m v'/dt for a disc of the mean radius R over rho g h0 2R:
     // pi g_d R v' / (2 g h0 dt), here 0.2 pi 0.75 0.1 / (2 9.81 55 dt).
     const std::string cfg = quote((fs::path(ORODEM_SOURCE_DIR) / "configs" / "exp1.toml").string());
-    const std::string traction = " --set wedge.base_law='\"traction\"'";
+    const std::string traction = " --set wedge.base_law='\"traction\"' --set wedge.v=0.1";
     const Result on = orodem("check " + cfg + traction + " --set wedge.drag_gain=0.2"),
                  off = orodem("check " + cfg + traction);
     ASSERT_EQ(on.status, 0) << on.err;

@@ -438,6 +438,69 @@ TEST_F(PlotRender, ValidateFindingsScriptAveragesTheRetrosideTwoSlopes) {
     EXPECT_HAS(out, "| old | 1 | n/a | n/a | n/a |");
 }
 
+TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
+    // A manifest of three exp1 groups (mu_bp 0.1, 0.3, 0.5), two seeds each,
+    // hand-made series S = 0.25 ... 6: alpha = 5 ± 0.1 (the seeds) for S < 3
+    // in every group, then a ± 0.5 with a = 2, 6, 10; beta 20 ± 0.5 in every
+    // group. Per group the seed s.e. is sd/sqrt(2) = 0.5 (0.1 for stage 1).
+    const fs::path root = work_ / "verdicts";
+    auto make = [&](const std::string& group, int seed, double a) {
+        const fs::path dir = root / "runs" / "mid" / group / ("seed" + std::to_string(seed));
+        fs::create_directories(dir);
+        write(dir / "config.toml", "[wedge]\ns_max = 6.0\npro_margin = 10.0\n");
+        write(dir / "log.txt", "finished: S = 6.000\n");
+        const double off = seed == 1 ? -1.0 : 1.0;
+        std::ostringstream s;
+        s << "S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,toe_pro_x_over_h0,toe_retro_x_over_h0\n";
+        for (int k = 1; k <= 24; ++k) {
+            const double S = 0.25 * k;
+            s << S << ',' << 0.4 * std::sqrt(S) << ',' << (S < 3.0 ? 5.0 + 0.1 * off : a + 0.5 * off) << ','
+              << 20.0 + 0.5 * off << ",0,95,-5,2.5\n";
+        }
+        write(dir / "series.csv", s.str());
+    };
+    for (int seed : {1, 2}) {
+        make("exp1_mubp0.1", seed, 2.0);
+        make("exp1_mubp0.3", seed, 6.0);
+        make("exp1_mubp0.5", seed, 10.0);
+    }
+    std::string groups;
+    for (const char* g : {"exp1_mubp0.1", "exp1_mubp0.3", "exp1_mubp0.5"})
+        groups += std::string("[mid.\"") + g + "\"]\nconfig = \"configs/mid/exp1.toml\"\nseeds = [1, 2]\n";
+    write(root / "m.toml", "root = \"runs\"\n" + groups);
+    const std::string script = "ORODEM=/nonexistent python3 " +
+                               quote(std::string(ORODEM_SOURCE_DIR) + "/scripts/validate-findings");
+    std::string out;
+    ASSERT_EQ(run(script + " --verdicts " + quote((root / "m.toml").string()), &out), 0) << out;
+    // Stage 1: every difference 0 ± 0.14, inside ±2 deg: alike.
+    EXPECT_HAS(out, "mu_bp 0.1: 5.00 ± 0.10 (2 runs); mu_bp 0.3: 5.00 ± 0.10 (2 runs); mu_bp 0.5: 5.00 ± 0.10 (2 runs) | reproduced |");
+    // Ordered: +4 deg at 4 / sqrt(0.5² + 0.5²) = 5.7 standard errors, both steps.
+    EXPECT_HAS(out, "0.3 - 0.1 +4.00 (5.7 se), 0.5 - 0.3 +4.00 (5.7 se) | reproduced |");
+    // H = 0.4 S^0.5 exactly: b = 0.5 with no spread; D = 95%.
+    EXPECT_HAS(out, "mu_bp 0.5: 0.500 ± 0.000 (2 runs) | reproduced |");
+    EXPECT_HAS(out, "mu_bp 0.5: 95.0 ± 0.0 (2 runs) | reproduced |");
+    // No orodem: no fault table, so that row has no runs to judge.
+    EXPECT_HAS(out, "mu_bp 0.1: no runs; mu_bp 0.3: no runs; mu_bp 0.5: no runs | no runs |");
+    // Beta alike (20 ± 0.35 in each) and steeper than alpha in every group.
+    EXPECT_HAS(out, "beta - alpha: 0.1 +18.00");
+    // One group 3 deg above the others at stage 1 (seeds 0.1 apart): outside
+    // the ±2 deg of "alike" and beyond 2 s.e., so the finding is refuted. (1 deg
+    // at 7 s.e. would still count as alike: sameness is judged by the margin.)
+    for (int seed : {1, 2}) make("exp1_mubp0.5", seed, 10.0);
+    {
+        const fs::path s = root / "runs" / "mid" / "exp1_mubp0.5" / "seed1" / "series.csv";
+        std::string t = slurp(s);
+        for (std::size_t at = t.find(",4.9,"); at != std::string::npos; at = t.find(",4.9,", at)) t.replace(at, 5, ",7.9,");
+        write(s, t);
+        const fs::path s2 = root / "runs" / "mid" / "exp1_mubp0.5" / "seed2" / "series.csv";
+        t = slurp(s2);
+        for (std::size_t at = t.find(",5.1,"); at != std::string::npos; at = t.find(",5.1,", at)) t.replace(at, 5, ",8.1,");
+        write(s2, t);
+    }
+    ASSERT_EQ(run(script + " --verdicts " + quote((root / "m.toml").string()), &out), 0) << out;
+    EXPECT_HAS(out, "mu_bp 0.5: 8.00 ± 0.10 (2 runs) | not reproduced |");
+}
+
 TEST_F(PlotRender, SeedGroupsJoinTheRunsThatDifferOnlyInTheirSeeds) {
     const std::string a = config_text(0.3), b = config_text(0.5);
     auto seeded = [](std::string t, int seed) {

@@ -9,7 +9,12 @@
 // others: it is reported, skipped on resume, and the sweep exits with 3.
 // With --jobs N the members run N at a time, each in a child process
 // (`orodem sweep-member DIR`, output in DIR/console.txt) with the cores
-// shared among them; a packing they share is settled once first.
+// shared among them; a packing they share is settled once first. With
+// --scheduler slurm the members go to Slurm as one job array instead
+// (run/slurm.hpp: DIR/slurm/array.sh runs `orodem sweep-member` per task, a
+// shared packing is settled first by `orodem sweep-settle` in a job the array
+// waits for), and `orodem resume DIR --scheduler slurm` submits the members
+// that are neither finished, failed nor still in the queue.
 #include <fcntl.h>
 #include <omp.h>
 #include <spawn.h>

@@ -448,7 +448,14 @@ int submit_members_slurm(const std::string& root_arg, const SweepManifest& m, co
                                           "--scheduler slurm",
                                           root_arg);
     std::vector<std::string> array_args = overrides;
-    const std::vector<std::size_t> settle = packings_to_settle(configs, dirs, true);
+    // Among the members submitted now (one still in the queue settles its own packing when it runs).
+    std::vector<Config> todo_configs;
+    std::vector<std::string> todo_dirs;
+    for (const int k : todo) {
+        todo_configs.push_back(configs[static_cast<std::size_t>(k)]);
+        todo_dirs.push_back(dirs[static_cast<std::size_t>(k)]);
+    }
+    const std::vector<std::size_t> settle = packings_to_settle(todo_configs, todo_dirs, true);
     if (!settle.empty()) {
         if (fresh || !fs::exists(settle_sh)) write_file_atomic(settle_sh, slurm_settle_script(root, exe, written));
         std::string id;

@@ -169,8 +169,9 @@ SlurmQueue sweep_queue(const std::string& dir, bool& submitted) {
     return slurm_task_states(ids);
 }
 
-/// A sweep member's state, from its files and its array task (q: Slurm's view, or none).
-std::string member_state_name(RunState st, const SlurmTaskState* q) {
+/// A sweep member's state, from its files and its array task (q: Slurm's
+/// view, or none; in_queue_known: squeue answered, so none means not queued).
+std::string member_state_name(RunState st, const SlurmTaskState* q, bool in_queue_known) {
     if (st == RunState::finished) return "finished";
     if (st == RunState::failed) return "failed";
     if (q && slurm_state_active(q->state)) return q->state == "PENDING" ? "pending" : "running";
@@ -179,8 +180,8 @@ std::string member_state_name(RunState st, const SlurmTaskState* q) {
         st != RunState::interrupted)
         return "failed";
     if (st == RunState::interrupted) return "interrupted";
-    if (st == RunState::no_end_line) return q ? "interrupted" : "running or killed";
-    return q ? "interrupted" : "not started";
+    if (st == RunState::no_end_line) return q || in_queue_known ? "interrupted" : "running or killed";
+    return "not started";
 }
 
 }  // namespace
@@ -216,7 +217,7 @@ int cmd_status(const std::string& dir) {
                 fmt::print("slurm: job {} {} ({})\n", t->job, t->state, t->source);
             else
                 fmt::print("slurm: {}\n", q.squeue ? "not in the queue" : "squeue did not answer");
-            ++counts[member_state_name(st, t)];
+            ++counts[member_state_name(st, t, q.squeue)];
         }
         if (manifest) {
             std::string detail;

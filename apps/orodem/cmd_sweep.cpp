@@ -484,9 +484,9 @@ int submit_members_slurm(const std::string& root_arg, const SweepManifest& m, co
                            MemberState::resume
                        ? "continuing"
                        : "starting");
-    fmt::print("sweep: submitted job array {} to Slurm: tasks {} of {} ({}/slurm/array.sh; job ids in "
+    fmt::print("sweep: submitted job array {} to Slurm: tasks {} ({} of {} members; {}/slurm/array.sh, job ids in "
                "{}/slurm/jobs.csv)\n",
-               id, tasks, n, root_arg, root_arg);
+               id, tasks, todo.size(), n, root_arg, root_arg);
     fmt::print("sweep: follow it with: orodem status {}; when it is done: orodem plot {}\n", root_arg, root_arg);
     fmt::print("job id: {}\n", id);
     return 0;

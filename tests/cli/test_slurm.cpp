@@ -118,7 +118,7 @@ TEST(Slurm, ASweepAsAJobArrayEndsAsWithOneJobAlsoWhenCancelledAndResumed) {
 
     // Resumed through Slurm: only the unfinished member is submitted.
     ASSERT_EQ(run(exe + " resume " + quote(sl.string()) + " --scheduler slurm", &out), 0) << out;
-    EXPECT_HAS(out, "tasks 1 of 2");
+    EXPECT_HAS(out, "tasks 1 (1 of 2 members");
     EXPECT_HAS(out, "wedge.mu_bp = 0.3: finished already, kept");
     const std::string id2 = job_id(out);
     ASSERT_FALSE(id2.empty()) << out;

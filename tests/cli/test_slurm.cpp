@@ -29,7 +29,7 @@ struct TestSlurm {
     bool started = false;  // started here by scripts/local-slurm: stopped at the end
     std::string why_not;
     TestSlurm() {
-        if (run("sinfo -h") == 0) return;  // a running Slurm: used, left as it is
+        if (run("timeout 10 sinfo -h") == 0) return;  // a running Slurm: used, left as it is
         if (::geteuid() != 0) {
             why_not = "no Slurm answers sinfo here, and scripts/local-slurm start (which would start one) needs root";
             return;
@@ -37,6 +37,7 @@ struct TestSlurm {
         std::string out;
         if (run(quote(kLocalSlurm) + " start", &out) != 0) {
             why_not = "scripts/local-slurm start could not start a local Slurm:\n" + out;
+            run(quote(kLocalSlurm) + " stop");  // what it may have started before it failed
             return;
         }
         started = true;

@@ -4,12 +4,16 @@
 // reads what the run directory already holds, writes nothing, and says: how
 // far the run got (S and steps), how its last piece ended (the last event
 // of events.csv), the newest checkpoint, the last measured rate with the
-// time left at that rate, and the command that continues it.
+// time left at that rate, and the command that continues it. A sweep
+// submitted to Slurm (orodem sweep --scheduler slurm) adds each member's job
+// as squeue (and, where accounting is on, sacct) shows it, and the members
+// counted as finished, running, pending in the queue, interrupted or failed.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -24,6 +28,7 @@
 #include "orodem/io/sweep_manifest.hpp"
 #include "orodem/run/run_dir.hpp"
 #include "orodem/run/run_log.hpp"
+#include "orodem/run/slurm.hpp"
 
 namespace orodem {
 
@@ -38,10 +43,19 @@ double leading_number(const std::string& row) {
     return end == row.c_str() ? std::nan("") : v;
 }
 
-/// Prints the status of the run in dir; returns true when it is finished. A
-/// sweep's member (in_sweep) is continued with the sweep, not on its own, so
-/// it prints no command of its own.
-bool status_of_run(const std::string& dir, bool in_sweep = false) {
+/// Where a run stands by its own files.
+enum class RunState {
+    not_started,  // no log.txt yet
+    no_end_line,  // started, no end line: running, or killed
+    interrupted,  // its last piece ended with a checkpoint to continue from
+    finished,
+    failed        // unstable, or stopped by run.on_unstable: resuming repeats it
+};
+
+/// Prints the status of the run in dir and returns its state. A sweep's
+/// member (in_sweep) is continued with the sweep, not on its own, so it
+/// prints no command of its own.
+RunState status_of_run(const std::string& dir, bool in_sweep = false) {
     require_run_dir(dir);
     const Config c = load_config(dir + "/config.toml");
     if (!is_wedge(c))
@@ -54,7 +68,7 @@ bool status_of_run(const std::string& dir, bool in_sweep = false) {
         // A sweep writes every member's config.toml before the first one runs.
         fmt::print("run: {} ({}, S_max = {:g})\nstate: not started yet\n{}", dir, c.run.experiment, c.wedge.s_max,
                    continue_with);
-        return false;
+        return RunState::not_started;
     }
     // events.csv (or, for a run started before it existed, log.txt read the
     // same way): the timestep, the last output (S and rate), the last event
@@ -140,7 +154,34 @@ bool status_of_run(const std::string& dir, bool in_sweep = false) {
                        n_rates, n_rates == 1 ? "" : "s", duration_text((total - last_step) / rate));
         fmt::print("{}", continue_with);
     }
-    return finished;
+    if (finished) return RunState::finished;
+    if (!last || !ends_a_piece(last->kind)) return RunState::no_end_line;
+    if (last->kind == RunEvent::unstable || last->kind == RunEvent::stopped) return RunState::failed;
+    return RunState::interrupted;
+}
+
+/// The array task ids of DIR/slurm/jobs.csv's array jobs, and the states Slurm gives them.
+SlurmQueue sweep_queue(const std::string& dir, bool& submitted) {
+    std::vector<std::string> ids;
+    for (const SlurmJob& j : read_slurm_jobs(dir))
+        if (j.kind == "array") ids.push_back(j.id);
+    submitted = !ids.empty();
+    return slurm_task_states(ids);
+}
+
+/// A sweep member's state, from its files and its array task (q: Slurm's
+/// view, or none; in_queue_known: squeue answered, so none means not queued).
+std::string member_state_name(RunState st, const SlurmTaskState* q, bool in_queue_known) {
+    if (st == RunState::finished) return "finished";
+    if (st == RunState::failed) return "failed";
+    if (q && slurm_state_active(q->state)) return q->state == "PENDING" ? "pending" : "running";
+    // Out of the queue: what its files say; a task that failed without a run's end line failed.
+    if (q && (q->state == "FAILED" || q->state == "OUT_OF_MEMORY" || q->state == "NODE_FAIL") &&
+        st != RunState::interrupted)
+        return "failed";
+    if (st == RunState::interrupted) return "interrupted";
+    if (st == RunState::no_end_line) return q || in_queue_known ? "interrupted" : "running or killed";
+    return "not started";
 }
 
 }  // namespace
@@ -160,14 +201,41 @@ int cmd_status(const std::string& dir) {
                 if (e.is_directory() && fs::exists(e.path() / "config.toml")) members.push_back(e.path().string());
             std::sort(members.begin(), members.end());
         }
+        // A sweep submitted to Slurm: its array tasks are the members in sweep.toml's order.
+        bool submitted = false;
+        const SlurmQueue q = manifest ? sweep_queue(dir, submitted) : SlurmQueue{};
+        std::map<std::string, int> counts;
         int finished = 0;
         for (std::size_t k = 0; k < members.size(); ++k) {
             if (k) fmt::print("\n");
-            finished += status_of_run(members[k], manifest) ? 1 : 0;
+            const RunState st = status_of_run(members[k], manifest);
+            finished += st == RunState::finished ? 1 : 0;
+            if (!submitted) continue;
+            const auto at = q.tasks.find(static_cast<int>(k));
+            const SlurmTaskState* t = at == q.tasks.end() ? nullptr : &at->second;
+            if (t)
+                fmt::print("slurm: job {} {} ({})\n", t->job, t->state, t->source);
+            else
+                fmt::print("slurm: {}\n", q.squeue ? "not in the queue" : "squeue did not answer");
+            ++counts[member_state_name(st, t, q.squeue)];
         }
-        if (manifest)
-            fmt::print("\nsweep: {} of {} runs finished{}\n", finished, members.size(),
-                       finished < static_cast<int>(members.size()) ? "; continue it with: orodem resume " + dir : "");
+        if (manifest) {
+            std::string detail;
+            for (const char* name : {"finished", "running", "pending", "interrupted", "failed", "running or killed",
+                                     "not started"})
+                if (counts[name] > 0) detail += fmt::format("{}{} {}", detail.empty() ? "" : ", ", counts[name], name);
+            // Something to continue that is not in the queue (a failed member is not continued).
+            const int waiting = counts["interrupted"] + counts["running or killed"] + counts["not started"];
+            const bool left = finished < static_cast<int>(members.size());
+            std::string next;
+            if (left && (!submitted || waiting > 0))
+                next = "; continue it with: orodem resume " + dir + (submitted ? " --scheduler slurm" : "");
+            fmt::print("\nsweep: {} of {} runs finished{}{}\n", finished, members.size(),
+                       submitted ? fmt::format(" (Slurm: {}{})", detail,
+                                               q.sacct ? "" : "; sacct has no record here, squeue only")
+                                 : std::string(),
+                       next);
+        }
         if (!members.empty()) return 0;
     }
     status_of_run(dir);

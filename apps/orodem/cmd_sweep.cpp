@@ -9,7 +9,12 @@
 // others: it is reported, skipped on resume, and the sweep exits with 3.
 // With --jobs N the members run N at a time, each in a child process
 // (`orodem sweep-member DIR`, output in DIR/console.txt) with the cores
-// shared among them; a packing they share is settled once first.
+// shared among them; a packing they share is settled once first. With
+// --scheduler slurm the members go to Slurm as one job array instead
+// (run/slurm.hpp: DIR/slurm/array.sh runs `orodem sweep-member` per task, a
+// shared packing is settled first by `orodem sweep-settle` in a job the array
+// waits for), and `orodem resume DIR --scheduler slurm` submits the members
+// that are neither finished, failed nor still in the queue.
 #include <fcntl.h>
 #include <omp.h>
 #include <spawn.h>
@@ -156,6 +161,45 @@ std::string member_label(const SweepManifest& m, const std::string& value) {
     return fmt::format("{} = {}", m.key, value);
 }
 
+/// The members whose packing is settled before the members run, one per
+/// packing: wedge members still to be started whose packing is not cached
+/// yet; only_shared: only the packings that two or more of them use (a
+/// packing of its own a member settles itself).
+std::vector<std::size_t> packings_to_settle(const std::vector<Config>& configs, const std::vector<std::string>& dirs,
+                                            bool only_shared) {
+    std::vector<std::size_t> first;  // the first member of each packing
+    std::vector<int> users;
+    std::vector<std::string> caches;
+    for (std::size_t k = 0; k < configs.size(); ++k) {
+        if (!is_wedge(configs[k]) || member_state(configs[k], dirs[k]) != MemberState::start) continue;
+        const std::string cache = packing_cache_path(configs[k]);
+        const auto at = std::find(caches.begin(), caches.end(), cache);
+        if (at != caches.end()) {
+            ++users[static_cast<std::size_t>(at - caches.begin())];
+            continue;
+        }
+        caches.push_back(cache);
+        users.push_back(1);
+        first.push_back(k);
+    }
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < first.size(); ++i)
+        if (!fs::exists(caches[i]) && (!only_shared || users[i] > 1)) out.push_back(first[i]);
+    return out;
+}
+
+/// Settles the packings of the members `which` into their caches (log in DIR/log.txt).
+void settle_packings(const std::string& root, const SweepManifest& m, const std::vector<Config>& configs,
+                     const std::vector<std::size_t>& which) {
+    for (const std::size_t k : which) {
+        fmt::print("sweep: settling the packing of {} first ({})\n", member_label(m, m.values[k]),
+                   packing_cache_path(configs[k]));
+        std::fflush(stdout);
+        TerminalObserver terminal;
+        ensure_packing_cached(configs[k], root, terminal);
+    }
+}
+
 /// This executable, to start the members of a parallel sweep.
 std::string self_exe() {
     std::error_code ec;
@@ -211,17 +255,7 @@ int run_members_parallel(const std::string& root, const SweepManifest& m, int th
     }
     // Members that share a packing not cached yet would each settle it at the
     // same time: settle each such packing once first (log in DIR/log.txt).
-    std::vector<std::string> settled;
-    for (std::size_t k = 0; k < n; ++k) {
-        if (!is_wedge(configs[k]) || member_state(configs[k], dirs[k]) != MemberState::start) continue;
-        const std::string cache = packing_cache_path(configs[k]);
-        if (std::find(settled.begin(), settled.end(), cache) != settled.end()) continue;
-        settled.push_back(cache);
-        if (fs::exists(cache)) continue;
-        fmt::print("sweep: settling the packing of {} first ({})\n", member_label(m, m.values[k]), cache);
-        TerminalObserver terminal;
-        ensure_packing_cached(configs[k], root, terminal);
-    }
+    settle_packings(root, m, configs, packings_to_settle(configs, dirs, false));
     const std::string exe = self_exe();
     const int child_threads = threads >= 0 ? threads : std::max(1, omp_get_num_procs() / jobs);
     std::vector<int> rc(n, -1);
@@ -323,9 +357,146 @@ int run_members(const std::string& root, const SweepManifest& m, int threads, in
     return finish_sweep(root, m, dirs, failed, all_wedges);
 }
 
+/// The sweep's Slurm options, checked against the rest of the command line.
+void check_scheduler_args(const SchedulerArgs& s, int threads, int jobs) {
+    if (s.scheduler != "slurm") {
+        if (s.slurm_given)
+            throw ConfigError("--partition, --time, --cpus-per-task and --sbatch-arg go with --scheduler slurm");
+        return;
+    }
+    if (jobs > 1)
+        throw ConfigError(fmt::format("--jobs {} with --scheduler slurm: each member is its own array task, as "
+                                      "many at once as the cluster allows; leave --jobs out",
+                                      jobs));
+    if (threads >= 0)
+        throw ConfigError(fmt::format("--threads {} with --scheduler slurm: each member runs with as many threads "
+                                      "as its CPUs; set them with --cpus-per-task",
+                                      threads));
+}
+
+/// The members of the sweep in root that are not finished (nor failed),
+/// submitted to Slurm as one job array (DIR/slurm/array.sh, written when
+/// fresh or missing), after a settling job when they share a packing not
+/// cached yet. With every member finished or failed: the overlay plots.
+int submit_members_slurm(const std::string& root_arg, const SweepManifest& m, const SchedulerArgs& s, bool fresh) {
+    std::string root = fs::absolute(root_arg).lexically_normal().string();
+    while (root.size() > 1 && root.back() == '/') root.pop_back();
+    const std::size_t n = m.values.size();
+    std::vector<std::string> dirs(n), names(n);
+    std::vector<Config> configs;
+    bool all_wedges = true;
+    for (std::size_t k = 0; k < n; ++k) {
+        dirs[k] = sweep_member_dir(root, m, m.values[k]);
+        names[k] = fs::path(dirs[k]).filename().string();
+        configs.push_back(member_config(root, dirs[k], -1));
+        all_wedges = all_wedges && is_wedge(configs.back());
+    }
+    std::vector<int> todo;
+    std::vector<std::string> ok, failed;
+    for (std::size_t k = 0; k < n; ++k) {
+        const MemberState st = member_state(configs[k], dirs[k]);
+        if (st == MemberState::finished) ok.push_back(dirs[k]);
+        if (st == MemberState::failed) failed.push_back(member_label(m, m.values[k]));
+        if (st == MemberState::finished || st == MemberState::failed) {
+            if (!fresh) report_done(st, dirs[k], member_label(m, m.values[k]));
+            continue;
+        }
+        todo.push_back(static_cast<int>(k));
+    }
+    if (todo.empty()) {
+        fmt::print("sweep: no member left to run; nothing submitted\n");
+        return finish_sweep(root_arg, m, ok, failed, all_wedges);
+    }
+    // A member still in the queue (a task of this sweep pending or running) is not submitted twice.
+    std::vector<std::string> ids;
+    for (const SlurmJob& j : read_slurm_jobs(root))
+        if (j.kind == "array") ids.push_back(j.id);
+    if (!ids.empty()) {
+        const SlurmQueue q = slurm_task_states(ids);
+        std::vector<int> rest;
+        for (const int k : todo) {
+            const auto at = q.tasks.find(k);
+            if (at != q.tasks.end() && slurm_state_active(at->second.state))
+                fmt::print("sweep: {}: still in Slurm's queue as job {} ({}); not submitted again\n",
+                           member_label(m, m.values[static_cast<std::size_t>(k)]), at->second.job, at->second.state);
+            else
+                rest.push_back(k);
+        }
+        if (rest.empty()) {
+            fmt::print("sweep: every unfinished member is in Slurm's queue; nothing submitted (orodem status {})\n",
+                       root_arg);
+            return 0;
+        }
+        todo = rest;
+    }
+    require_slurm_command("sbatch");
+    const std::string sdir = slurm_dir(root), exe = self_exe();
+    make_dirs(sdir);
+    const std::string array_sh = sdir + "/array.sh", settle_sh = sdir + "/settle.sh";
+    SlurmOptions written = s.slurm;
+    if (written.cpus_per_task < 1) written.cpus_per_task = 1;
+    if (fresh || !fs::exists(array_sh)) write_file_atomic(array_sh, slurm_array_script(root, names, exe, written));
+    // On resume the options given again override the scripts' #SBATCH lines.
+    std::vector<std::string> overrides;
+    if (!fresh) {
+        if (!s.slurm.partition.empty()) overrides.push_back("--partition=" + s.slurm.partition);
+        if (!s.slurm.time.empty()) overrides.push_back("--time=" + s.slurm.time);
+        if (s.slurm.cpus_per_task > 0) overrides.push_back(fmt::format("--cpus-per-task={}", s.slurm.cpus_per_task));
+        for (const auto& a : s.slurm.sbatch_args) overrides.push_back(a);
+    }
+    const std::string again = fmt::format("; the sweep folder is ready: submit it again with orodem resume {} "
+                                          "--scheduler slurm",
+                                          root_arg);
+    std::vector<std::string> array_args = overrides;
+    // Among the members submitted now (one still in the queue settles its own packing when it runs).
+    std::vector<Config> todo_configs;
+    std::vector<std::string> todo_dirs;
+    for (const int k : todo) {
+        todo_configs.push_back(configs[static_cast<std::size_t>(k)]);
+        todo_dirs.push_back(dirs[static_cast<std::size_t>(k)]);
+    }
+    const std::vector<std::size_t> settle = packings_to_settle(todo_configs, todo_dirs, true);
+    if (!settle.empty()) {
+        if (fresh || !fs::exists(settle_sh)) write_file_atomic(settle_sh, slurm_settle_script(root, exe, written));
+        std::string id;
+        try {
+            id = sbatch(overrides, settle_sh);
+        } catch (const SchedulerError& e) {
+            throw SchedulerError(e.what() + again);
+        }
+        record_slurm_job(root, SlurmJob{id, "settle", ""});
+        fmt::print("sweep: submitted job {} to settle the packing {} members share ({}/slurm/settle.sh)\n", id,
+                   settle.size() == 1 ? "that several" : "s that several", root_arg);
+        array_args.push_back("--dependency=afterok:" + id);
+    }
+    const std::string tasks = array_ranges(todo);
+    array_args.push_back("--array=" + tasks);
+    std::string id;
+    try {
+        id = sbatch(array_args, array_sh);
+    } catch (const SchedulerError& e) {
+        throw SchedulerError(e.what() + again);
+    }
+    record_slurm_job(root, SlurmJob{id, "array", tasks});
+    for (const int k : todo)
+        fmt::print("sweep: {} -> job {}_{} ({})\n", member_label(m, m.values[static_cast<std::size_t>(k)]), id, k,
+                   member_state(configs[static_cast<std::size_t>(k)], dirs[static_cast<std::size_t>(k)]) ==
+                           MemberState::resume
+                       ? "continuing"
+                       : "starting");
+    fmt::print("sweep: submitted job array {} to Slurm: tasks {} ({} of {} members; {}/slurm/array.sh, job ids in "
+               "{}/slurm/jobs.csv)\n",
+               id, tasks, todo.size(), n, root_arg, root_arg);
+    fmt::print("sweep: follow it with: orodem status {}; when it is done: orodem plot {}\n", root_arg, root_arg);
+    fmt::print("job id: {}\n", id);
+    return 0;
+}
+
 }  // namespace
 
-int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg, int jobs) {
+int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg, int jobs,
+              const SchedulerArgs& s) {
+    check_scheduler_args(s, a.threads, jobs);
     const auto [key, values] = parse_vary(vary);
     // Validate every member of the sweep before writing anything.
     std::vector<Config> configs;
@@ -357,6 +528,8 @@ int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& o
                                       fs::exists(sweep_manifest_path(root))
                                           ? fmt::format(", or continue the sweep in it with: orodem resume {}", root)
                                           : std::string()));
+    // Without sbatch nothing is written.
+    if (s.scheduler == "slurm") require_slurm_command("sbatch");
     SweepManifest m{a.config, key, values, a.sets};
     make_dirs(root);
     for (std::size_t k = 0; k < values.size(); ++k) {
@@ -365,15 +538,22 @@ int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& o
         write_file_atomic(dir + "/config.toml", to_toml(configs[k]));
     }
     write_file_atomic(sweep_manifest_path(root), to_toml(m));
+    if (s.scheduler == "slurm") return submit_members_slurm(root, m, s, true);
     return run_members(root, m, a.threads, jobs);
 }
 
-int cmd_resume(const std::string& dir, int threads, int jobs) {
+int cmd_resume(const std::string& dir, int threads, int jobs, const SchedulerArgs& s) {
+    check_scheduler_args(s, threads, jobs);
     if (fs::exists(sweep_manifest_path(dir))) {
         const SweepManifest m = read_sweep_manifest(dir);
         fmt::print("continuing the sweep in {} ({} = {} values)\n", dir, m.key, m.values.size());
+        if (s.scheduler == "slurm") return submit_members_slurm(dir, m, s, false);
         return run_members(dir, m, threads, jobs);
     }
+    if (s.scheduler == "slurm")
+        throw ConfigError(fmt::format("--scheduler slurm: {} is not a sweep's folder (no sweep.toml); a single run "
+                                      "is resumed with orodem resume {} inside a batch job of your own",
+                                      dir, dir));
     // One run, continued with its own config.toml.
     CommonArgs a;
     a.config = dir + "/config.toml";
@@ -390,6 +570,21 @@ int cmd_sweep_member(const std::string& dir, int threads) {
     const Config c = member_config(root, dir, threads);
     set_threads(c);
     return run_member(c, dir, fs::path(dir).filename().string());
+}
+
+int cmd_sweep_settle(const std::string& dir, int threads) {
+    const SweepManifest m = read_sweep_manifest(dir);
+    std::vector<std::string> dirs;
+    std::vector<Config> configs;
+    for (const auto& v : m.values) {
+        dirs.push_back(sweep_member_dir(dir, m, v));
+        configs.push_back(member_config(dir, dirs.back(), threads));
+    }
+    if (!configs.empty()) set_threads(configs.front());
+    const std::vector<std::size_t> which = packings_to_settle(configs, dirs, true);
+    if (which.empty()) fmt::print("sweep: every packing the members share is cached already\n");
+    settle_packings(dir, m, configs, which);
+    return 0;
 }
 
 }  // namespace orodem

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "orodem/run/slurm.hpp"
 
 namespace orodem {
 
@@ -18,18 +19,34 @@ int cmd_check(const CommonArgs& a);
 /// orodem run (cmd_run.cpp); resume: continue the run in out_arg from its newest usable checkpoint.
 int cmd_run(const CommonArgs& a, const std::string& out_arg, bool resume = false);
 
+/// Where a sweep's members run: "local" (this machine, --jobs at a time) or
+/// "slurm" (one job array, run/slurm.hpp). slurm_given: a Slurm option was
+/// given on the command line (refused with the local scheduler).
+struct SchedulerArgs {
+    std::string scheduler = "local";
+    SlurmOptions slurm;        // cpus_per_task 0: as in DIR/slurm/array.sh (resume)
+    bool slurm_given = false;
+};
+
 /// orodem sweep (cmd_sweep.cpp): one run per value of a key into DIR/<key>=<value>/,
 /// recorded in DIR/sweep.toml, then the overlay plots.
 /// jobs > 1: that many members at once, each in a child process.
-int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg, int jobs = 1);
+/// --scheduler slurm: the members submitted as one Slurm job array instead.
+int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg, int jobs = 1,
+              const SchedulerArgs& s = {});
 /// orodem resume DIR (cmd_sweep.cpp): a sweep folder (with sweep.toml) continues its members in
 /// order (finished ones kept, interrupted ones resumed, the rest started;
 /// jobs of them at once); any other DIR is one run, resumed. threads < 0:
 /// each run's own run.threads (with jobs > 1: the cores shared among the jobs).
-int cmd_resume(const std::string& dir, int threads, int jobs = 1);
+/// --scheduler slurm: the unfinished members submitted again as a job array.
+int cmd_resume(const std::string& dir, int threads, int jobs = 1, const SchedulerArgs& s = {});
 /// The hidden `orodem sweep-member DIR`: one member of a parallel sweep, run
-/// or continued in the child process that the sweep started for it.
+/// or continued in the child process that the sweep started for it (or in
+/// its Slurm array task).
 int cmd_sweep_member(const std::string& dir, int threads);
+/// The hidden `orodem sweep-settle DIR`: the packings that several members of
+/// the sweep share, settled once (the Slurm job the array waits for).
+int cmd_sweep_settle(const std::string& dir, int threads);
 /// orodem bench-pile (cmd_bench.cpp): the canonical benchmark.
 int cmd_bench_pile(const std::string& pile, std::uint64_t steps, int threads);
 

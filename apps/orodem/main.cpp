@@ -1,7 +1,7 @@
 // orodem command line: parses arguments with CLI11, hands typed values to the
 // subcommands (commands.hpp) and maps errors to exit statuses (0 ok,
 // 1 internal, 2 bad config or arguments, 3 unstable, 4 I/O, 6 a missing program
-// (ffmpeg); an interrupted
+// (ffmpeg, sbatch), 7 the scheduler refused a job; an interrupted
 // run returns 130 for SIGINT, 143 for SIGTERM after writing a checkpoint).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -15,6 +15,31 @@
 #include "orodem/engine/pair_kernel.hpp"
 
 using namespace orodem;
+
+namespace {
+
+/// --scheduler and the Slurm options of sweep and resume; `cpus` describes --cpus-per-task.
+void add_scheduler_options(CLI::App* cmd, SchedulerArgs& s, const std::string& cpus) {
+    cmd->add_option("--scheduler", s.scheduler, "Where a sweep's runs go: local (this machine) or slurm (one Slurm "
+                                                "job array, scripts in DIR/slurm/)")
+        ->check(CLI::IsMember({"local", "slurm"}))
+        ->capture_default_str();
+    auto given = [&s](const auto&) { s.slurm_given = true; };
+    cmd->add_option("--partition", s.slurm.partition, "Slurm partition (default: the cluster's)")->each(given);
+    cmd->add_option("--time", s.slurm.time, "Wall-time limit of each array task, HH:MM:SS or D-HH:MM:SS (default: "
+                                            "the partition's); a member stopped by it continues with orodem resume "
+                                            "DIR --scheduler slurm")
+        ->each(given);
+    cmd->add_option("--cpus-per-task", s.slurm.cpus_per_task, "Slurm: " + cpus)
+        ->check(CLI::Range(1, 1024))
+        ->each(given);
+    cmd->add_option("--sbatch-arg", s.slurm.sbatch_args, "A further sbatch option, e.g. --sbatch-arg=--account=geo "
+                                                         "(repeatable)")
+        ->allow_extra_args(false)
+        ->each(given);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     // Whole lines as they are printed, also into a file or a pipe (a run
@@ -57,6 +82,9 @@ int main(int argc, char** argv) {
                                                   "shared among them unless --threads is given")
         ->check(CLI::Range(1, 256))
         ->capture_default_str();
+    SchedulerArgs resume_sched;
+    resume_sched.slurm.cpus_per_task = 0;  // as in DIR/slurm/array.sh
+    add_scheduler_options(resume_cmd, resume_sched, "the CPUs of each array task (default: as in DIR/slurm/array.sh)");
 
     std::string member_dir;
     int member_threads = -1;
@@ -88,6 +116,16 @@ int main(int argc, char** argv) {
                                             "them unless --threads is given")
         ->check(CLI::Range(1, 256))
         ->capture_default_str();
+    SchedulerArgs sweep_sched;
+    add_scheduler_options(sweep, sweep_sched, "the CPUs of each array task, and its member's --threads");
+
+    std::string settle_dir;
+    int settle_threads = -1;
+    auto* settle = app.add_subcommand("sweep-settle", "The packings a sweep's members share, settled once (the Slurm "
+                                                      "job its array waits for)");
+    settle->group("");  // internal: not listed in --help
+    settle->add_option("sweep_dir", settle_dir, "The sweep's folder")->required();
+    settle->add_option("--threads", settle_threads, "OpenMP threads");
 
     std::vector<std::string> plot_dirs;
     std::string plot_out;
@@ -196,7 +234,7 @@ int main(int argc, char** argv) {
             known = known || sub->get_name() == argv[1];
             names += (names.empty() ? "" : ", ") + sub->get_name();
         }
-        if (!known && std::string(argv[1]) != "sweep-member") {
+        if (!known && std::string(argv[1]) != "sweep-member" && std::string(argv[1]) != "sweep-settle") {
             fmt::print(stderr, "orodem: error: unknown command '{}'; the commands are {} (orodem --help)\n", argv[1],
                        names);
             return static_cast<int>(ExitCode::config);
@@ -210,11 +248,12 @@ int main(int argc, char** argv) {
     }
     try {
         if (*run) return cmd_run(run_args, out, resume);
-        if (*resume_cmd) return cmd_resume(resume_dir, resume_args.threads, resume_jobs);
+        if (*resume_cmd) return cmd_resume(resume_dir, resume_args.threads, resume_jobs, resume_sched);
+        if (*settle) return cmd_sweep_settle(settle_dir, settle_threads);
         if (*member) return cmd_sweep_member(member_dir, member_threads);
         if (*status) return cmd_status(status_dir);
         if (*check) return cmd_check(check_args);
-        if (*sweep) return cmd_sweep(sweep_args, sweep_vary, sweep_out, sweep_jobs);
+        if (*sweep) return cmd_sweep(sweep_args, sweep_vary, sweep_out, sweep_jobs, sweep_sched);
         if (*calib) return cmd_calibrate(calib_args, calib_out);
         if (*plot) return cmd_plot(plot_dirs, plot_out, plot_seeds);
         if (*render) return cmd_render(ra);
@@ -235,6 +274,9 @@ int main(int argc, char** argv) {
     } catch (const MissingToolError& e) {
         fmt::print(stderr, "orodem: error: {}\n", e.what());
         return static_cast<int>(ExitCode::missing_tool);
+    } catch (const SchedulerError& e) {
+        fmt::print(stderr, "orodem: scheduler error: {}\n", e.what());
+        return static_cast<int>(ExitCode::scheduler);
     } catch (const InstabilityError& e) {
         fmt::print(stderr, "orodem: unstable: {}\n", e.what());
         return static_cast<int>(ExitCode::unstable);

@@ -14,7 +14,8 @@ enum class ExitCode : int {
     unstable = 3,      // the simulation blew up (NaN, overlap, speed, lost particle)
     io = 4,            // a file could not be read or written
     time_limit = 5,    // stopped at run.max_wall_minutes with a checkpoint; --resume continues
-    missing_tool = 6,  // a program orodem calls is not installed (ffmpeg for orodem movie)
+    missing_tool = 6,  // a program orodem calls is not installed (ffmpeg for orodem movie, sbatch)
+    scheduler = 7,     // the batch scheduler (Slurm's sbatch) refused a submission
     interrupted = 130  // SIGINT (SIGTERM gives 143)
 };
 
@@ -33,6 +34,13 @@ public:
 /// A program that orodem calls (ffmpeg) is not installed; what() names it
 /// and the Debian package. Exit status 6.
 class MissingToolError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// The batch scheduler refused a job (sbatch's exit status and message in
+/// what()). Exit status 7.
+class SchedulerError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
 };

@@ -15,9 +15,7 @@
 // shared packing is settled first by `orodem sweep-settle` in a job the array
 // waits for), and `orodem resume DIR --scheduler slurm` submits the members
 // that are neither finished, failed nor still in the queue.
-#include <fcntl.h>
 #include <omp.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -40,12 +38,11 @@
 #include "orodem/io/series_reader.hpp"
 #include "orodem/io/sweep_manifest.hpp"
 #include "orodem/io/packing_file.hpp"
+#include "orodem/io/process.hpp"
 #include "orodem/run/run_dir.hpp"
 #include "orodem/run/run_log.hpp"
 #include "orodem/run/run_plots.hpp"
 #include "orodem/run/runner.hpp"
-
-extern char** environ;
 
 namespace orodem {
 
@@ -218,23 +215,13 @@ pid_t start_member(const std::string& exe, const std::string& dir, int threads) 
         args.push_back("--threads");
         args.push_back(std::to_string(threads));
     }
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, console.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-    posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
-    posix_spawnattr_t at;
-    posix_spawnattr_init(&at);
-    posix_spawnattr_setpgroup(&at, 0);
-    posix_spawnattr_setflags(&at, POSIX_SPAWN_SETPGROUP);
+    ChildIo io;
+    io.log = console;
+    io.append = true;
+    io.new_group = true;
     pid_t pid = -1;
-    const int rc = posix_spawn(&pid, exe.c_str(), &fa, &at, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&fa);
-    posix_spawnattr_destroy(&at);
-    if (rc != 0) throw IoError(fmt::format("cannot start {} for {}: {}", exe, dir, std::strerror(rc)));
+    if (const int rc = spawn_child(args, io, pid); rc != 0)
+        throw IoError(fmt::format("cannot start {} for {}: {}", exe, dir, std::strerror(rc)));
     return pid;
 }
 

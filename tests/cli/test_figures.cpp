@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "orodem/render/particle_view.hpp"
+#include "orodem/io/process.hpp"
 #include "orodem/render/run_figures.hpp"
 #include "orodem/io/fault_table.hpp"
 #include "orodem/run/run_faults.hpp"

@@ -1,8 +1,5 @@
 #include "orodem/render/run_figures.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -16,8 +13,7 @@
 
 #include "orodem/core/error.hpp"
 #include "orodem/io/files.hpp"
-
-extern char** environ;
+#include "orodem/io/process.hpp"
 
 namespace fs = std::filesystem;
 namespace orodem {
@@ -121,22 +117,6 @@ PictureInfo render_run_figure(const SavedRun& run, const std::vector<std::size_t
     return render_panels(panels, view, out);
 }
 
-std::string find_on_path(const std::string& name) {
-    const char* path = std::getenv("PATH");
-    std::string dirs = path ? path : "";
-    std::size_t start = 0;
-    while (start <= dirs.size()) {
-        const std::size_t end = std::min(dirs.find(':', start), dirs.size());
-        const std::string dir = dirs.substr(start, end - start);
-        if (!dir.empty()) {
-            const std::string candidate = dir + "/" + name;
-            if (::access(candidate.c_str(), X_OK) == 0 && !fs::is_directory(candidate)) return candidate;
-        }
-        start = end + 1;
-    }
-    return "";
-}
-
 std::string movie_format(const std::string& path) {
     const auto dot = path.rfind('.');
     const std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
@@ -167,28 +147,6 @@ std::string last_line(const std::string& path) {
     while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
     const auto nl = text.rfind('\n');
     return nl == std::string::npos ? text : text.substr(nl + 1);
-}
-
-/// Runs argv[0] (a full path) with stdin from /dev/null and stdout and
-/// stderr into log; returns its exit status (-1: killed by a signal).
-int run_child(const std::vector<std::string>& args, const std::string& log) {
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
-    std::vector<std::string> copy = args;
-    std::vector<char*> argv;
-    for (auto& a : copy) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid = -1;
-    const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&fa);
-    if (rc != 0) throw IoError(fmt::format("cannot start '{}': {}", args[0], std::strerror(rc)));
-    int st = 0;
-    while (::waitpid(pid, &st, 0) < 0)
-        if (errno != EINTR) throw IoError(fmt::format("waiting for '{}': {}", args[0], std::strerror(errno)));
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
 }  // namespace
@@ -225,7 +183,12 @@ std::size_t render_run_movie(const SavedRun& run, const MovieOptions& o, const s
                                  "-movflags", "+faststart", "-f", "mp4"});
     }
     args.push_back(encoded);
-    const int rc = run_child(args, log);
+    ChildIo io;
+    io.log = log;
+    pid_t pid = -1;
+    if (const int err = spawn_child(args, io, pid); err != 0)
+        throw IoError(fmt::format("cannot start '{}': {}", args[0], std::strerror(err)));
+    const int rc = wait_child(pid);
     if (rc != 0 || !fs::exists(encoded))
         throw IoError(fmt::format("ffmpeg could not make '{}' (exit status {}): {}", out, rc, last_line(log)));
     std::error_code ec;

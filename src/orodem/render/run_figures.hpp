@@ -72,9 +72,6 @@ void require_colour_data(const SavedRun& run, std::size_t k, const std::string& 
 PictureInfo render_run_figure(const SavedRun& run, const std::vector<std::size_t>& chosen, const std::string& color_by,
                               int width_px, const std::string& out, const RunFaultLines* faults = nullptr);
 
-/// The full path of an executable `name` on PATH; "" when there is none.
-std::string find_on_path(const std::string& name);
-
 struct MovieOptions {
     std::string color_by = "horizons";  // horizons | displacement | strain | strain_total
     int width_px = 1600;                // frame width [px] (ffmpeg pads to even sizes)

@@ -1,12 +1,8 @@
 // The Slurm side of a sweep (slurm.hpp): the batch scripts' text, sbatch,
-// squeue and sacct as child processes (posix_spawnp, output read through a
-// pipe), and the job list DIR/slurm/jobs.csv.
+// squeue and sacct as child processes (io/process: run_program), and the job
+// list DIR/slurm/jobs.csv.
 #include "orodem/run/slurm.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -19,8 +15,7 @@
 
 #include "orodem/core/error.hpp"
 #include "orodem/io/files.hpp"
-
-extern char** environ;
+#include "orodem/io/process.hpp"
 
 namespace orodem {
 
@@ -33,63 +28,6 @@ std::string sh_quote(const std::string& s) {
     std::string q = "'";
     for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
     return q + "'";
-}
-
-/// A program's exit status (-1: it could not be started or did not exit)
-/// and its standard output and error together.
-struct ProgramResult {
-    int status = -1;
-    std::string output;
-};
-
-/// Runs argv[0] (looked up on PATH) with stdin from /dev/null, collecting
-/// what it prints.
-ProgramResult run_program(const std::vector<std::string>& args) {
-    ProgramResult r;
-    int fds[2];
-    if (::pipe(fds) != 0) return r;
-    std::vector<std::string> copy = args;
-    std::vector<char*> argv;
-    for (auto& a : copy) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_adddup2(&fa, fds[1], STDOUT_FILENO);
-    posix_spawn_file_actions_adddup2(&fa, fds[1], STDERR_FILENO);
-    posix_spawn_file_actions_addclose(&fa, fds[0]);
-    posix_spawn_file_actions_addclose(&fa, fds[1]);
-    pid_t pid = -1;
-    const int rc = posix_spawnp(&pid, argv[0], &fa, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&fa);
-    ::close(fds[1]);
-    if (rc != 0) {
-        ::close(fds[0]);
-        return r;
-    }
-    char buf[4096];
-    for (;;) {
-        const ssize_t n = ::read(fds[0], buf, sizeof buf);
-        if (n > 0) r.output.append(buf, static_cast<std::size_t>(n));
-        else if (n == 0 || errno != EINTR) break;
-    }
-    ::close(fds[0]);
-    int st = 0;
-    while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
-    }
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return r;
-}
-
-bool on_path(const std::string& program) {
-    const char* path = std::getenv("PATH");
-    std::stringstream dirs(path ? path : "/usr/bin:/bin");
-    std::string d;
-    while (std::getline(dirs, d, ':')) {
-        if (d.empty()) continue;
-        if (::access((fs::path(d) / program).c_str(), X_OK) == 0) return true;
-    }
-    return false;
 }
 
 std::string trimmed(std::string s) {
@@ -179,7 +117,7 @@ std::string array_ranges(const std::vector<int>& ids) {
 }
 
 void require_slurm_command(const std::string& program) {
-    if (!on_path(program))
+    if (find_on_path(program).empty())
         throw MissingToolError(fmt::format("{} is not installed or not on PATH: a sweep with --scheduler slurm "
                                            "needs Slurm's commands (Debian package slurm-client; on this machine "
                                            "scripts/local-slurm start sets up a single-node Slurm)",
@@ -265,7 +203,7 @@ SlurmQueue slurm_task_states(const std::vector<std::string>& ids) {
     };
     std::string list;
     for (const auto& id : ids) list += (list.empty() ? "" : ",") + id;
-    if (on_path("sacct")) {
+    if (!find_on_path("sacct").empty()) {
         const ProgramResult r = run_program({"sacct", "-n", "-P", "-X", "-j", list, "-o", "JobID,State"});
         if (r.status == 0) {
             q.sacct = true;
@@ -278,7 +216,7 @@ SlurmQueue slurm_task_states(const std::vector<std::string>& ids) {
             }
         }
     }
-    if (on_path("squeue")) {
+    if (!find_on_path("squeue").empty()) {
         // Every task of this user's jobs (-r: one line per array task), filtered here:
         // squeue -j refuses the whole list when one job has left its memory.
         const ProgramResult r = run_program({"squeue", "-h", "-r", "--me", "-o", "%F|%K|%T"});

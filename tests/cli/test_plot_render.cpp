@@ -443,19 +443,32 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     // hand-made series S = 0.25 ... 6: alpha = 5 ± 0.1 (the seeds) for S < 3
     // in every group, then a ± 0.5 with a = 2, 6, 10; beta 20 ± 0.5 in every
     // group. Per group the seed s.e. is sd/sqrt(2) = 0.5 (0.1 for stage 1).
+    //
+    // The plate's push ahead of the toe (section_push) over 1 <= S < 3 is
+    // (a / 4) ± 0.1 rho g h0^2 (rho = 2500, g = 9.81, h0 = 10 m), so 0.5, 1.5
+    // and 2.5. The first snapshot holds ten discs of area 104 m² in the
+    // plate's window (x from -150 to -20 m: 1300 m² of layer, area fraction
+    // eta = 0.8) and one outside it; with phi_peak = 30° (K_p = 3) the
+    // passive strength is 1/2 K_p eta = 1.2 rho g h0^2.
     const fs::path root = work_ / "verdicts";
     auto make = [&](const std::string& group, int seed, double a) {
         const fs::path dir = root / "runs" / "mid" / group / ("seed" + std::to_string(seed));
-        fs::create_directories(dir);
-        write(dir / "config.toml", "[wedge]\ns_max = 6.0\npro_margin = 10.0\n");
+        fs::create_directories(dir / "snapshots");
+        write(dir / "config.toml", "[wedge]\ns_max = 6.0\npro_margin = 10.0\n[packing]\nh0 = 10.0\n");
         write(dir / "log.txt", "finished: S = 6.000\n");
+        orodem::ParticleStore p;
+        for (int k = 0; k < 10; ++k) p.add({-140.0 + 12.0 * k, 5.0}, std::sqrt(104.0 / M_PI), 2500.0);
+        p.add({0.0, 5.0}, 3.0, 2500.0);
+        orodem::write_vtu((dir / "snapshots" / "S0.vtu").string(), p, {});
+        orodem::write_pvd((dir / "run.pvd").string(), {{0.0, "snapshots/S0.vtu"}});
         const double off = seed == 1 ? -1.0 : 1.0;
         std::ostringstream s;
-        s << "S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,toe_pro_x_over_h0,toe_retro_x_over_h0\n";
+        s << "S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,toe_pro_x_over_h0,toe_retro_x_over_h0,"
+             "section_push\n";
         for (int k = 1; k <= 24; ++k) {
             const double S = 0.25 * k;
             s << S << ',' << 0.4 * std::sqrt(S) << ',' << (S < 3.0 ? 5.0 + 0.1 * off : a + 0.5 * off) << ','
-              << 20.0 + 0.5 * off << ",0,95,-5,2.5\n";
+              << 20.0 + 0.5 * off << ",0,95,-5,2.5," << (a / 4.0 + 0.1 * off) * 2500.0 * 9.81 * 100.0 << "\n";
         }
         write(dir / "series.csv", s.str());
     };
@@ -466,9 +479,33 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     }
     std::string groups;
     for (const char* g : {"exp1_mubp0.1", "exp1_mubp0.3", "exp1_mubp0.5"})
-        groups += std::string("[mid.\"") + g + "\"]\nconfig = \"configs/mid/exp1.toml\"\nseeds = [1, 2]\n";
+        groups += std::string("[mid.\"") + g + "\"]\nconfig = \"configs/mid/exp1.toml\"\nseeds = [1, 2]\nphi_peak_deg = 30\n";
+    // The critical wedge's packings: the frontal thrust roots 3 h0 ahead of
+    // the toe in the hexagonal packing (one run: no seed changes a lattice),
+    // 1 ± 0.1 and 0.5 ± 0.1 h0 in the random ones (two seeds each).
+    auto make_cw = [&](const std::string& group, int seed, double ahead) {
+        const fs::path dir = root / "runs" / "mid" / group / ("seed" + std::to_string(seed));
+        fs::create_directories(dir);
+        write(dir / "config.toml", "[wedge]\ns_max = 6.0\n");
+        write(dir / "log.txt", "finished: S = 6.000\n");
+        std::ostringstream s;
+        s << "S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,toe_pro_x_over_h0,toe_retro_x_over_h0,"
+             "front_thrust_x_over_h0\n";
+        for (int k = 1; k <= 24; ++k)
+            s << 0.25 * k << ",0.5,8,nan,0,95,-4,nan," << (k == 8 ? std::string("nan") : std::to_string(-4.0 - ahead))
+              << "\n";
+        write(dir / "series.csv", s.str());
+    };
+    make_cw("critical_hexagonal", 1, 3.0);
+    for (int seed : {1, 2}) {
+        make_cw("critical_discs", seed, seed == 1 ? 0.9 : 1.1);
+        make_cw("critical_clusters", seed, seed == 1 ? 0.4 : 0.6);
+    }
+    groups += "[mid.critical_hexagonal]\nconfig = \"c.toml\"\nseeds = [1]\ndeterministic = true\n"
+              "[mid.critical_discs]\nconfig = \"c.toml\"\nseeds = [1, 2]\n"
+              "[mid.critical_clusters]\nconfig = \"c.toml\"\nseeds = [1, 2]\n";
     write(root / "m.toml", "root = \"runs\"\n" + groups);
-    const std::string script = "ORODEM=/nonexistent python3 " +
+    const std::string script = "ORODEM=/nonexistent /usr/bin/python3 " +
                                quote(std::string(ORODEM_SOURCE_DIR) + "/scripts/validate-findings");
     std::string out;
     ASSERT_EQ(run(script + " --verdicts " + quote((root / "m.toml").string()), &out), 0) << out;
@@ -483,6 +520,14 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     EXPECT_HAS(out, "mu_bp 0.1: no runs; mu_bp 0.3: no runs; mu_bp 0.5: no runs | no runs |");
     // Beta alike (20 ± 0.35 in each) and steeper than alpha in every group.
     EXPECT_HAS(out, "beta - alpha: 0.1 +18.00");
+    // Hexagonal 3 h0 ahead (s.e. 0): 2.0 and 2.5 h0 beyond the random packings
+    // at 2.0 / 0.1 = 20 and 25 standard errors; an output with no thrust is left out.
+    EXPECT_HAS(out, "hexagonal 3.00 ± 0.00 (1 run); discs 1.00 ± 0.10 (2 runs); clusters 0.50 ± 0.10 (2 runs); "
+                    "hexagonal - discs +2.00 (20.0 se), hexagonal - clusters +2.50 (25.0 se)");
+    EXPECT_HAS(out, "clusters 8.00 ± 0.00 (2 runs) | reproduced |");
+    // The push table: 0.50 ± 0.10 against 1.2 (ratio 0.42), 2.50 against 1.2 (2.08).
+    EXPECT_HAS(out, "| exp1_mubp0.1 | 0.50 ± 0.10 (2 runs) | 0.800 | 1.20 | 0.42 |");
+    EXPECT_HAS(out, "| exp1_mubp0.5 | 2.50 ± 0.10 (2 runs) | 0.800 | 1.20 | 2.08 |");
     // One group 3 deg above the others at stage 1 (seeds 0.1 apart): outside
     // the ±2 deg of "alike" and beyond 2 s.e., so the finding is refuted. (1 deg
     // at 7 s.e. would still count as alike: sameness is judged by the margin.)

@@ -40,6 +40,7 @@ const std::vector<SeriesColumn> kColumns = {
     {"stage", F::integer, [](const SeriesRow& r) { return static_cast<double>(r.stage); }, false},
     {"alpha_se_deg", F::g6, [](const SeriesRow& r) { return r.m.alpha_se_deg; }, true},
     {"beta_se_deg", F::g6, [](const SeriesRow& r) { return r.m.beta_se_deg; }, true},
+    {"section_push", F::g6, [](const SeriesRow& r) { return r.section_push; }, false},
 };
 
 void append(std::string& out, ColumnFormat f, double v) {

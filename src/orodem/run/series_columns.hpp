@@ -37,6 +37,8 @@ struct SeriesRow {
     int retro_faults = 0;              // active retro-vergent faults [-]
     double front_thrust_x = 0.0;       // root x of the most proside active pro-vergent fault (NaN: none) [m]
     int stage = 0;                     // the paper's stage reached, stage_reached [-]
+    double section_push = 0.0;         // x force through the section 1 h0 ahead of the prowedge toe,
+                                       // analysis/section_force.hpp (NaN: no toe) [N]
 };
 
 enum class ColumnFormat {

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "orodem/analysis/rel_disp.hpp"
+#include "orodem/analysis/section_force.hpp"
 #include "orodem/analysis/strain.hpp"
 #include "orodem/boundary/basal_boundary.hpp"
 #include "orodem/boundary/fixed_retro.hpp"
@@ -256,6 +257,9 @@ WedgeMeasures WedgeRun::write_row() {
     r.max_speed = sim_.max_speed();
     r.base_normal_force = sim_.wall_force(kWallProBase).y;
     r.trailing_wall_push = -sim_.wall_force(kWallProEnd).x;
+    r.section_push = std::isfinite(r.m.toe_pro_x)
+                         ? section_force(sim_.particles, sim_.contacts, r.m.toe_pro_x - h0_, sim_.params.period_x).x
+                         : std::nan("");
     r.pro_faults = fault_counts_.pro;
     r.retro_faults = fault_counts_.retro;
     r.front_thrust_x = fault_counts_.front_x;

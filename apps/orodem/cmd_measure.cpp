@@ -1,13 +1,17 @@
 // orodem measure RUN_DIR: the wedge measures of each saved snapshot of a wedge
 // run taken again from the snapshot alone, as CSV on standard output: the
 // columns of series.csv that a snapshot determines (run/series_columns.hpp),
-// in the same formats, so they can be compared with the run's own rows.
+// in the same formats, so they can be compared with the run's own rows. The
+// belt's decoupling point comes from each snapshot and the one before it.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "orodem/analysis/basal_decoupling.hpp"
 #include "orodem/analysis/wedge_profile.hpp"
 #include "orodem/core/error.hpp"
 #include "orodem/io/config.hpp"
@@ -38,18 +42,34 @@ int cmd_measure(const std::string& run_dir) {
     ProfileParams pp = wedge_profile_params(c);
     const double h0 = c.packing.h0;
     fmt::print("{}\n", series_header(true));
+    std::vector<Vec2> x_then;  // the previous snapshot's positions and radii by disc id
+    std::vector<double> r_then;
     for (std::size_t k = 0; k < snaps.size(); ++k) {
         const std::string vtu = (dir / snaps[k].file).string();
         const VtuData d = read_vtu(vtu);
         const auto& radius = d.require("radius", vtu);
+        const auto& id = d.require("id", vtu);
         ParticleStore p;
         for (std::size_t i = 0; i < d.x.size(); ++i) p.add(d.x[i], radius[i], 1.0);
         if (p.size() == 0) throw IoError(fmt::format("'{}': snapshot holds no discs", vtu));
         if (k == 0) pp.y_mean = undeformed_surface(p, pp);
+        std::size_t n = 0;
+        for (double v : id) n = std::max(n, static_cast<std::size_t>(v) + 1);
+        std::vector<Vec2> x_now(n, Vec2{std::nan(""), std::nan("")});
+        std::vector<double> r_now(n, std::nan(""));
+        for (std::size_t i = 0; i < d.x.size(); ++i) {
+            x_now[static_cast<std::size_t>(id[i])] = d.x[i];
+            r_now[static_cast<std::size_t>(id[i])] = radius[i];
+        }
         SeriesRow r;
         r.S = snaps[k].S;
         r.h0 = h0;
         r.m = measure_wedge(p, pp, snaps[k].S * h0);
+        r.decoupling_x = k == 0 ? std::nan("")
+                                : basal_decoupling_x(x_then, x_now, r_then, (snaps[k].S - snaps[k - 1].S) * h0,
+                                                     kDecouplingBinOverH0 * h0);
+        x_then = std::move(x_now);
+        r_then = std::move(r_now);
         fmt::print("{}\n", series_line(r, static_cast<std::size_t>(-1), true));
     }
     return 0;

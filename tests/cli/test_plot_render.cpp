@@ -245,7 +245,9 @@ TEST_F(PlotRender, MeasureTakesTheRunsMeasuresAgainFromItsSnapshots) {
     // it with y_mean taken from the S = 0 one, as the run did from its layer;
     // every measure it shares with series.csv must come out the same (the
     // positions are stored exactly). Dilation divides by S h0 instead of
-    // v t, which agree to the 6 decimals of S: relative 1e-5.
+    // v t, which agree to the 6 decimals of S: relative 1e-5; so does the
+    // belt's decoupling point (the belt's displacement from the S of two
+    // snapshots).
     write_tiny_exp1(work_);
     ASSERT_EQ(orodem("run tiny.toml --out r --threads 1").status, 0);
     const Result r = orodem("measure r");
@@ -257,14 +259,14 @@ TEST_F(PlotRender, MeasureTakesTheRunsMeasuresAgainFromItsSnapshots) {
     ASSERT_EQ(again.rows(), 3u);
     for (const char* name : {"S", "H_over_h0", "alpha_deg", "beta_deg", "peak_dx_over_h0", "toe_pro_x_over_h0",
                              "toe_retro_x_over_h0", "beta_inner_deg", "beta_outer_deg", "retro_break_x_over_h0",
-                             "dilation_pct"}) {
+                             "dilation_pct", "decoupling_x_over_h0"}) {
         const auto* a = again.column(name);
         const auto* b = series.column(name);
         ASSERT_TRUE(a && b) << name;
         for (std::size_t k = 0; k < again.rows(); ++k) {
             if (std::isnan((*b)[k])) {
                 EXPECT_TRUE(std::isnan((*a)[k])) << name << " row " << k;
-            } else if (std::string(name) == "dilation_pct") {
+            } else if (std::string(name) == "dilation_pct" || std::string(name) == "decoupling_x_over_h0") {
                 EXPECT_NEAR((*a)[k], (*b)[k], 1e-5 * std::fabs((*b)[k])) << name << " row " << k;
             } else {
                 EXPECT_EQ((*a)[k], (*b)[k]) << name << " row " << k;
@@ -516,8 +518,10 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     // H = 0.4 S^0.5 exactly: b = 0.5 with no spread; D = 95%.
     EXPECT_HAS(out, "mu_bp 0.5: 0.500 ± 0.000 (2 runs) | reproduced |");
     EXPECT_HAS(out, "mu_bp 0.5: 95.0 ± 0.0 (2 runs) | reproduced |");
-    // No orodem: no fault table, so that row has no runs to judge.
-    EXPECT_HAS(out, "mu_bp 0.1: no runs; mu_bp 0.3: no runs; mu_bp 0.5: no runs | no runs |");
+    // No orodem: no fault table, so the two rows of the retro thrust's root have no runs to judge.
+    EXPECT_HAS(out, "h0 of it: mu_bp 0.1: no runs; mu_bp 0.3: no runs; mu_bp 0.5: no runs | no runs |");
+    EXPECT_HAS(out, "h0 of the output's decoupling point: mu_bp 0.1: no runs; mu_bp 0.3: no runs; mu_bp 0.5: no "
+                    "runs | no runs |");
     // Beta alike (20 ± 0.35 in each) and steeper than alpha in every group.
     EXPECT_HAS(out, "beta - alpha: 0.1 +18.00");
     // Hexagonal 3 h0 ahead (s.e. 0): 2.0 and 2.5 h0 beyond the random packings

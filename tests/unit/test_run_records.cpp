@@ -42,10 +42,10 @@ TEST(SeriesColumns, HeaderIsTheRunDirectoryContract) {
               "max_overlap_ratio,toe_pro_x_over_h0,toe_retro_x_over_h0,base_traction,discs_on_base,"
               "discs_sliding_on_base,fixed_discs,mean_overlap_ratio,max_speed,base_normal_force,trailing_wall_push,"
               "beta_inner_deg,beta_outer_deg,retro_break_x_over_h0,active_pro_faults,active_retro_faults,"
-              "front_thrust_x_over_h0,stage,alpha_se_deg,beta_se_deg,section_push");
+              "front_thrust_x_over_h0,stage,alpha_se_deg,beta_se_deg,section_push,decoupling_x_over_h0");
     EXPECT_EQ(series_header(true),
               "S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,toe_pro_x_over_h0,toe_retro_x_over_h0,"
-              "beta_inner_deg,beta_outer_deg,retro_break_x_over_h0,alpha_se_deg,beta_se_deg");
+              "beta_inner_deg,beta_outer_deg,retro_break_x_over_h0,alpha_se_deg,beta_se_deg,decoupling_x_over_h0");
 }
 
 TEST(SeriesColumns, RowFormatsAndLeadingColumns) {
@@ -61,11 +61,11 @@ TEST(SeriesColumns, RowFormatsAndLeadingColumns) {
     const std::string line = series_line(r);
     EXPECT_EQ(line.rfind("123456789012,0.333333333,0.250000,1.5,nan,", 0), 0u) << line;
     EXPECT_NE(line.find(",77,"), std::string::npos) << line;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 30) << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 31) << line;
     r.pro_faults = 2, r.retro_faults = 1, r.front_thrust_x = -12.0, r.stage = 2;
-    r.m.alpha_se_deg = 0.25, r.m.beta_se_deg = 1.5, r.section_push = 2.5e7;
+    r.m.alpha_se_deg = 0.25, r.m.beta_se_deg = 1.5, r.section_push = 2.5e7, r.decoupling_x = -10.0;
     const std::string tail = series_line(r);
-    EXPECT_EQ(tail.substr(tail.size() - 26), ",2,1,-3,2,0.25,1.5,2.5e+07") << tail;
+    EXPECT_EQ(tail.substr(tail.size() - 31), ",2,1,-3,2,0.25,1.5,2.5e+07,-2.5") << tail;
     EXPECT_EQ(series_line(r, 3), "123456789012,0.333333333,0.250000");
     EXPECT_EQ(series_line(r, static_cast<std::size_t>(-1), true).rfind("0.250000,1.5,nan,0,0,0,-2.5,", 0), 0u);
 }

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "orodem/analysis/basal_decoupling.hpp"
 #include "orodem/analysis/strain.hpp"
 #include "orodem/core/error.hpp"
 #include "orodem/io/config.hpp"
@@ -18,14 +19,20 @@ namespace orodem {
 
 namespace {
 
-/// The positions of a snapshot by disc id (NaN for an id it lacks).
-std::vector<Vec2> positions_by_id(const std::string& vtu) {
+/// The positions of a snapshot by disc id (NaN for an id it lacks), and
+/// (if radius is given) the radii likewise.
+std::vector<Vec2> positions_by_id(const std::string& vtu, std::vector<double>* radius = nullptr) {
     const VtuData d = read_vtu(vtu);
     const std::vector<double>& id = d.require("id", vtu);
     std::size_t n = 0;
     for (double v : id) n = std::max(n, static_cast<std::size_t>(v) + 1);
     std::vector<Vec2> x(n, Vec2{std::nan(""), std::nan("")});
     for (std::size_t k = 0; k < d.x.size(); ++k) x[static_cast<std::size_t>(id[k])] = d.x[k];
+    if (radius) {
+        const std::vector<double>& r = d.require("radius", vtu);
+        radius->assign(n, std::nan(""));
+        for (std::size_t k = 0; k < d.x.size(); ++k) (*radius)[static_cast<std::size_t>(id[k])] = r[k];
+    }
     return x;
 }
 
@@ -89,6 +96,21 @@ std::vector<Fault> faults_at(const RunFaults& f, double S, double* S_out) {
     for (const FaultRow& r : f.rows)
         if (r.S == best) at.push_back(r.fault);
     return at;
+}
+
+double run_decoupling_at(const std::string& dir, double S) {
+    const fs::path d(dir);
+    const std::vector<Snapshot> snaps = read_pvd((d / "run.pvd").string());
+    std::size_t k = 0;
+    for (std::size_t i = 1; i < snaps.size(); ++i)
+        if (std::fabs(snaps[i].S - S) < std::fabs(snaps[k].S - S)) k = i;
+    if (k == 0) return std::nan("");
+    const double h0 = load_config((d / "config.toml").string()).packing.h0;
+    std::vector<double> radius;
+    const std::vector<Vec2> x_then = positions_by_id((d / snaps[k - 1].file).string(), &radius);
+    const std::vector<Vec2> x_now = positions_by_id((d / snaps[k].file).string());
+    return basal_decoupling_x(x_then, x_now, radius, (snaps[k].S - snaps[k - 1].S) * h0, kDecouplingBinOverH0 * h0) /
+           h0;
 }
 
 RunFaultLines run_fault_lines(const RunFaults& f, const std::vector<Snapshot>& snaps, double h0) {

@@ -29,6 +29,11 @@ RunFaults run_faults(const std::string& dir, bool from_snapshots = false);
 /// The rows of `f` at the output nearest S (an output S is listed once).
 std::vector<Fault> faults_at(const RunFaults& f, double S, double* S_out);
 
+/// The belt's decoupling point (analysis/basal_decoupling.hpp) over the
+/// interval ending at the snapshot nearest S, from that snapshot and the one
+/// before it, in h0 from the S point (NaN for the first snapshot).
+double run_decoupling_at(const std::string& dir, double S);
+
 /// Per snapshot of snaps, the active faults of the run's output at its S (in
 /// metres: the table's h0 units times h0); an empty list for a snapshot that
 /// is no output of the table (e.g. S = 0).

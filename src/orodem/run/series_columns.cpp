@@ -41,6 +41,7 @@ const std::vector<SeriesColumn> kColumns = {
     {"alpha_se_deg", F::g6, [](const SeriesRow& r) { return r.m.alpha_se_deg; }, true},
     {"beta_se_deg", F::g6, [](const SeriesRow& r) { return r.m.beta_se_deg; }, true},
     {"section_push", F::g6, [](const SeriesRow& r) { return r.section_push; }, false},
+    {"decoupling_x_over_h0", F::g6, [](const SeriesRow& r) { return r.decoupling_x / r.h0; }, true},
 };
 
 void append(std::string& out, ColumnFormat f, double v) {

@@ -39,6 +39,8 @@ struct SeriesRow {
     int stage = 0;                     // the paper's stage reached, stage_reached [-]
     double section_push = 0.0;         // x force through the section 1 h0 ahead of the prowedge toe,
                                        // analysis/section_force.hpp (NaN: no toe) [N]
+    double decoupling_x = 0.0;         // the belt's decoupling point over the interval ending here,
+                                       // analysis/basal_decoupling.hpp (NaN: none, first output) [m]
 };
 
 enum class ColumnFormat {

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "orodem/analysis/basal_decoupling.hpp"
 #include "orodem/analysis/rel_disp.hpp"
 #include "orodem/analysis/section_force.hpp"
 #include "orodem/analysis/strain.hpp"
@@ -264,6 +265,7 @@ WedgeMeasures WedgeRun::write_row() {
     r.retro_faults = fault_counts_.retro;
     r.front_thrust_x = fault_counts_.front_x;
     r.stage = st_.stage;
+    r.decoupling_x = decoupling_x_;
     series_.line(series_line(r, series_columns_));
     const double secs = elapsed();
     const double rate = static_cast<double>(sim_.step_count - rate_from_step_) / std::max(secs - rate_from_secs_, 1e-9);
@@ -288,7 +290,12 @@ void WedgeRun::measure_structures() {
     const std::vector<Vec2> x_now = positions_by_id(sim_.particles);
     strain_ = local_strain(st_.x_then, x_now, 2.0 * (c_.packing.r_min + c_.packing.r_max));
     std::vector<Fault> found;
+    decoupling_x_ = std::nan("");
     if (sim_.step_count > 0 && st_.outputs > 0) {
+        std::vector<double> radius(x_now.size());
+        for (std::size_t s = 0; s < sim_.particles.size(); ++s) radius[sim_.particles.id[s]] = sim_.particles.radius[s];
+        const double belt = st_.pvd.empty() ? 0.0 : (S() - st_.pvd.back().first) * h0_;  // [m] over the interval
+        decoupling_x_ = basal_decoupling_x(st_.x_then, x_now, radius, belt, kDecouplingBinOverH0 * h0_);
         accumulate_gradient(st_.F_total, strain_.F);
         found = detect_faults(x_now, strain_.shear, fault_params_).faults;
     } else if (st_.F_total.size() < x_now.size()) {

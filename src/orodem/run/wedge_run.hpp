@@ -91,6 +91,7 @@ private:
     FaultParams fault_params_;
     StrainField strain_;                // over the interval ending at this output
     FaultCounts fault_counts_;          // active faults of this output
+    double decoupling_x_ = 0.0;         // the belt's decoupling point over this output's interval [m]
     std::vector<FaultLine> fault_lines_;  // active faults of this output, drawn on its strain map [m]
     std::uint64_t steps_per_output_ = 1;
     std::uint64_t n_outputs_ = 1;

@@ -453,7 +453,7 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     // eta = 0.8) and one outside it; with phi_peak = 30° (K_p = 3) the
     // passive strength is 1/2 K_p eta = 1.2 rho g h0^2.
     const fs::path root = work_ / "verdicts";
-    auto make = [&](const std::string& group, int seed, double a) {
+    auto make = [&](const std::string& group, int seed, double a, double s1 = 5.0) {
         const fs::path dir = root / "runs" / "mid" / group / ("seed" + std::to_string(seed));
         fs::create_directories(dir / "snapshots");
         write(dir / "config.toml", "[wedge]\ns_max = 6.0\npro_margin = 10.0\n[packing]\nh0 = 10.0\n");
@@ -469,7 +469,7 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
              "section_push\n";
         for (int k = 1; k <= 24; ++k) {
             const double S = 0.25 * k;
-            s << S << ',' << 0.4 * std::sqrt(S) << ',' << (S < 3.0 ? 5.0 + 0.1 * off : a + 0.5 * off) << ','
+            s << S << ',' << 0.4 * std::sqrt(S) << ',' << (S < 3.0 ? s1 + 0.1 * off : a + 0.5 * off) << ','
               << 20.0 + 0.5 * off << ",0,95,-5,2.5," << (a / 4.0 + 0.1 * off) * 2500.0 * 9.81 * 100.0 << "\n";
         }
         write(dir / "series.csv", s.str());
@@ -478,10 +478,15 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
         make("exp1_mubp0.1", seed, 2.0);
         make("exp1_mubp0.3", seed, 6.0);
         make("exp1_mubp0.5", seed, 10.0);
+        // The same seeds on the traction base: stage-1 alpha 2, 5 and 8 ± 0.1 (not alike).
+        make("exp1_mubp0.1_traction", seed, 2.0, 2.0);
+        make("exp1_mubp0.3_traction", seed, 6.0, 5.0);
+        make("exp1_mubp0.5_traction", seed, 10.0, 8.0);
     }
     std::string groups;
     for (const char* g : {"exp1_mubp0.1", "exp1_mubp0.3", "exp1_mubp0.5"})
-        groups += std::string("[mid.\"") + g + "\"]\nconfig = \"configs/mid/exp1.toml\"\nseeds = [1, 2]\nphi_peak_deg = 30\n";
+        groups += std::string("[mid.\"") + g + "\"]\nconfig = \"configs/mid/exp1.toml\"\nseeds = [1, 2]\nphi_peak_deg = 30\n" +
+                  "[mid.\"" + g + "_traction\"]\nconfig = \"configs/mid/exp1.toml\"\nseeds = [1, 2]\n";
     // The critical wedge's packings: the frontal thrust roots 3 h0 ahead of
     // the toe in the hexagonal packing (one run: no seed changes a lattice),
     // 1 ± 0.1 and 0.5 ± 0.1 h0 in the random ones (two seeds each).
@@ -513,6 +518,9 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     ASSERT_EQ(run(script + " --verdicts " + quote((root / "m.toml").string()), &out), 0) << out;
     // Stage 1: every difference 0 ± 0.14, inside ±2 deg: alike.
     EXPECT_HAS(out, "mu_bp 0.1: 5.00 ± 0.10 (2 runs); mu_bp 0.3: 5.00 ± 0.10 (2 runs); mu_bp 0.5: 5.00 ± 0.10 (2 runs) | reproduced |");
+    // On the traction base 2, 5, 8 ± 0.1: differences of 3 and 6 deg, 21 and 42 se: not alike.
+    EXPECT_HAS(out, "traction base (the same seeds, to S = 3) | alpha, 1 <= S < 3: mu_bp 0.1: 2.00 ± 0.10 (2 runs); "
+                    "mu_bp 0.3: 5.00 ± 0.10 (2 runs); mu_bp 0.5: 8.00 ± 0.10 (2 runs) | not reproduced |");
     // Ordered: +4 deg at 4 / sqrt(0.5² + 0.5²) = 5.7 standard errors, both steps.
     EXPECT_HAS(out, "0.3 - 0.1 +4.00 (5.7 se), 0.5 - 0.3 +4.00 (5.7 se) | reproduced |");
     // H = 0.4 S^0.5 exactly: b = 0.5 with no spread; D = 95%.
@@ -531,6 +539,8 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     EXPECT_HAS(out, "clusters 8.00 ± 0.00 (2 runs) | reproduced |");
     // The push table: 0.50 ± 0.10 against 1.2 (ratio 0.42), 2.50 against 1.2 (2.08).
     EXPECT_HAS(out, "| exp1_mubp0.1 | 0.50 ± 0.10 (2 runs) | 0.800 | 1.20 | 0.42 |");
+    // A traction group takes phi_peak from its Coulomb twin.
+    EXPECT_HAS(out, "| exp1_mubp0.1_traction | 0.50 ± 0.10 (2 runs) | 0.800 | 1.20 | 0.42 |");
     EXPECT_HAS(out, "| exp1_mubp0.5 | 2.50 ± 0.10 (2 runs) | 0.800 | 1.20 | 2.08 |");
     // One group 3 deg above the others at stage 1 (seeds 0.1 apart): outside
     // the ±2 deg of "alike" and beyond 2 s.e., so the finding is refuted. (1 deg

@@ -3,7 +3,6 @@
 // columns of series.csv that a snapshot determines (run/series_columns.hpp),
 // in the same formats, so they can be compared with the run's own rows. The
 // belt's decoupling point comes from each snapshot and the one before it.
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -48,19 +47,12 @@ int cmd_measure(const std::string& run_dir) {
         const std::string vtu = (dir / snaps[k].file).string();
         const VtuData d = read_vtu(vtu);
         const auto& radius = d.require("radius", vtu);
-        const auto& id = d.require("id", vtu);
         ParticleStore p;
         for (std::size_t i = 0; i < d.x.size(); ++i) p.add(d.x[i], radius[i], 1.0);
         if (p.size() == 0) throw IoError(fmt::format("'{}': snapshot holds no discs", vtu));
         if (k == 0) pp.y_mean = undeformed_surface(p, pp);
-        std::size_t n = 0;
-        for (double v : id) n = std::max(n, static_cast<std::size_t>(v) + 1);
-        std::vector<Vec2> x_now(n, Vec2{std::nan(""), std::nan("")});
-        std::vector<double> r_now(n, std::nan(""));
-        for (std::size_t i = 0; i < d.x.size(); ++i) {
-            x_now[static_cast<std::size_t>(id[i])] = d.x[i];
-            r_now[static_cast<std::size_t>(id[i])] = radius[i];
-        }
+        std::vector<double> r_now;
+        std::vector<Vec2> x_now = positions_by_id(d, vtu, &r_now);
         SeriesRow r;
         r.S = snaps[k].S;
         r.h0 = h0;

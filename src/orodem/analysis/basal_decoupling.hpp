@@ -16,9 +16,8 @@
 // ≥ ½ gives x_d, interpolated linearly between its centre and the centre of
 // the nearest non-empty bin downstream (whose mean is < ½). x_d = 0 when the
 // non-empty bin nearest the S point moves at ≥ ½ (the belt carries the layer
-// up to S); NaN
-// when no bin does (d ≤ 0, or nothing rides the belt). Pure function of its
-// inputs, sequential in id order.
+// up to S); NaN when no bin does (d ≤ 0, or nothing rides the belt). Pure
+// function of its inputs, sequential in id order.
 #pragma once
 
 #include <vector>

@@ -1,5 +1,7 @@
 #include "orodem/io/vtu_writer.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -191,6 +193,20 @@ const std::vector<double>& VtuData::require(const std::string& name, const std::
     const auto* a = find(name);
     if (!a) throw IoError(fmt::format("'{}': snapshot has no '{}' array", path, name));
     return *a;
+}
+
+std::vector<Vec2> positions_by_id(const VtuData& d, const std::string& path, std::vector<double>* radius) {
+    const std::vector<double>& id = d.require("id", path);
+    std::size_t n = 0;
+    for (double v : id) n = std::max(n, static_cast<std::size_t>(v) + 1);
+    std::vector<Vec2> x(n, Vec2{std::nan(""), std::nan("")});
+    for (std::size_t k = 0; k < d.x.size(); ++k) x[static_cast<std::size_t>(id[k])] = d.x[k];
+    if (radius) {
+        const std::vector<double>& r = d.require("radius", path);
+        radius->assign(n, std::nan(""));
+        for (std::size_t k = 0; k < d.x.size(); ++k) (*radius)[static_cast<std::size_t>(id[k])] = r[k];
+    }
+    return x;
 }
 
 std::vector<Snapshot> read_pvd(const std::string& path) {

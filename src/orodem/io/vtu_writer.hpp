@@ -47,6 +47,10 @@ struct VtuData {
     const std::vector<double>& require(const std::string& name, const std::string& path) const;
 };
 VtuData read_vtu(const std::string& path);
+/// The positions of a read snapshot by disc id, from its `id` array (NaN for
+/// an id it lacks), and, if `radius` is given, its radii likewise; `path`
+/// names the file in errors.
+std::vector<Vec2> positions_by_id(const VtuData& d, const std::string& path, std::vector<double>* radius = nullptr);
 
 /// One snapshot listed in a run.pvd.
 struct Snapshot {

@@ -19,21 +19,10 @@ namespace orodem {
 
 namespace {
 
-/// The positions of a snapshot by disc id (NaN for an id it lacks), and
+/// The positions of a snapshot file by disc id (NaN for an id it lacks), and
 /// (if radius is given) the radii likewise.
 std::vector<Vec2> positions_by_id(const std::string& vtu, std::vector<double>* radius = nullptr) {
-    const VtuData d = read_vtu(vtu);
-    const std::vector<double>& id = d.require("id", vtu);
-    std::size_t n = 0;
-    for (double v : id) n = std::max(n, static_cast<std::size_t>(v) + 1);
-    std::vector<Vec2> x(n, Vec2{std::nan(""), std::nan("")});
-    for (std::size_t k = 0; k < d.x.size(); ++k) x[static_cast<std::size_t>(id[k])] = d.x[k];
-    if (radius) {
-        const std::vector<double>& r = d.require("radius", vtu);
-        radius->assign(n, std::nan(""));
-        for (std::size_t k = 0; k < d.x.size(); ++k) (*radius)[static_cast<std::size_t>(id[k])] = r[k];
-    }
-    return x;
+    return positions_by_id(read_vtu(vtu), vtu, radius);
 }
 
 }  // namespace

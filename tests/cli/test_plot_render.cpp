@@ -542,6 +542,24 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     // A traction group takes phi_peak from its Coulomb twin.
     EXPECT_HAS(out, "| exp1_mubp0.1_traction | 0.50 ± 0.10 (2 runs) | 0.800 | 1.20 | 0.42 |");
     EXPECT_HAS(out, "| exp1_mubp0.5 | 2.50 ± 0.10 (2 runs) | 0.800 | 1.20 | 2.08 |");
+    {
+        // With an orodem, --verdicts takes the snapshot columns from `orodem measure` and keeps the
+        // run's own others (section_push). A stand-in measure gives alpha 7 at S = 1.5 and 2.5: each
+        // run's stage-1 mean becomes (6 (5 ± 0.1) + 2 * 7) / 8 = 5.5 ± 0.075 (s.e. 0.075, printed 0.07),
+        // and the push rows stay.
+        write(root / "fake-orodem",
+              "#!/bin/sh\nif [ \"$1\" = measure ]; then printf 'S,alpha_deg\\n1.5,7\\n2.5,7\\n'; exit 0; fi\nexit 1\n");
+        fs::permissions(root / "fake-orodem", fs::perms::owner_all);
+        std::string again;
+        ASSERT_EQ(run("ORODEM=" + quote((root / "fake-orodem").string()) + " /usr/bin/python3 " +
+                          quote(std::string(ORODEM_SOURCE_DIR) + "/scripts/validate-findings") + " --verdicts " +
+                          quote((root / "m.toml").string()),
+                      &again),
+                  0)
+            << again;
+        EXPECT_HAS(again, "mu_bp 0.1: 5.50 ± 0.07 (2 runs); mu_bp 0.3: 5.50 ± 0.07 (2 runs)");
+        EXPECT_HAS(again, "| exp1_mubp0.1 | 0.50 ± 0.10 (2 runs) | 0.800 | 1.20 | 0.42 |");
+    }
     // One group 3 deg above the others at stage 1 (seeds 0.1 apart): outside
     // the ±2 deg of "alike" and beyond 2 s.e., so the finding is refuted. (1 deg
     // at 7 s.e. would still count as alike: sameness is judged by the margin.)

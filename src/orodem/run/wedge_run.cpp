@@ -294,8 +294,7 @@ void WedgeRun::measure_structures() {
     if (sim_.step_count > 0 && st_.outputs > 0) {
         std::vector<double> radius(x_now.size());
         for (std::size_t s = 0; s < sim_.particles.size(); ++s) radius[sim_.particles.id[s]] = sim_.particles.radius[s];
-        const double belt = st_.pvd.empty() ? 0.0 : (S() - st_.pvd.back().first) * h0_;  // [m] over the interval
-        decoupling_x_ = basal_decoupling_x(st_.x_then, x_now, radius, belt, kDecouplingBinOverH0 * h0_);
+        decoupling_x_ = basal_decoupling_x(st_.x_then, x_now, radius, interval_m(), kDecouplingBinOverH0 * h0_);
         accumulate_gradient(st_.F_total, strain_.F);
         found = detect_faults(x_now, strain_.shear, fault_params_).faults;
     } else if (st_.F_total.size() < x_now.size()) {
@@ -323,7 +322,7 @@ void WedgeRun::draw() {
     const std::vector<double> rel = normalised(rel_m);
     // The pictures' displacement: per unit convergence over the interval,
     // one colour scale for every frame (render/particle_view.hpp).
-    const double interval = st_.pvd.empty() ? 0.0 : (S() - st_.pvd.back().first) * h0_;  // [m]
+    const double interval = interval_m();
     std::vector<double> disp(rel_m.size(), 0.0);
     if (interval > 0.0)
         for (std::size_t s = 0; s < disp.size(); ++s) disp[s] = rel_m[s] / interval;
@@ -459,6 +458,8 @@ void WedgeRun::event(RunEvent kind, std::string text, double wall_s, double step
 }
 
 double WedgeRun::S() const { return c_.wedge.v * sim_.time / h0_; }
+
+double WedgeRun::interval_m() const { return st_.pvd.empty() ? 0.0 : (S() - st_.pvd.back().first) * h0_; }
 
 double WedgeRun::elapsed() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();

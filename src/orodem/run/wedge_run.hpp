@@ -72,6 +72,7 @@ private:
     /// A log.txt line that is an event of events.csv, at this step and S.
     void event(RunEvent kind, std::string text, double wall_s = std::nan(""), double steps_per_s = std::nan(""));
     double S() const;
+    double interval_m() const;  // the belt's displacement since the last snapshot (0 before the first) [m]
     double elapsed() const;
 
     const Config& c_;

@@ -578,6 +578,51 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     EXPECT_HAS(out, "mu_bp 0.5: 8.00 ± 0.10 (2 runs) | not reproduced |");
 }
 
+TEST_F(PlotRender, QuasiStaticCheckPairsEachArmWithItsReferenceSeedBySeed) {
+    // Arms v and v-nosleep (the sleeping zones off), measured by a stand-in
+    // orodem: alpha of v is 5, 7, 9 for seeds 1-3 and 20 for a seed 4 that the
+    // other arm lacks, of v-nosleep 6, 7.5, 10. Unpaired: 7.83 ± 1.17 against
+    // 10.25 ± 3.35 (sd 6.70 / 2), a difference of -2.42 with s.e.
+    // hypot(1.167, 3.351) = 3.55, and "no" for the missing seed. Paired over
+    // the common seeds 1-3: differences 1, 0.5, 1, mean 0.83, sd 0.289, s.e.
+    // 0.17: the shift, with its sign, at 5 s.e. Beta and H are equal: 0 ± 0.
+    const fs::path root = work_ / "qsc";
+    fs::create_directories(root);
+    write(root / "fake-orodem",
+          "#!/bin/sh\n"
+          "if [ \"$1\" = check ]; then printf 'v = 0.05\\nsafety = 0.1\\ndt = 0.0003\\ninertial number I = "
+          "0.0004\\n'; exit 0; fi\n"
+          "if [ \"$1\" = measure ]; then cat \"$2/measured.csv\"; exit 0; fi\nexit 1\n");
+    fs::permissions(root / "fake-orodem", fs::perms::owner_all);
+    auto make = [&](const std::string& arm, int seed, double alpha) {
+        const fs::path dir = root / "out" / arm / ("seed" + std::to_string(seed));
+        fs::create_directories(dir);
+        write(dir / "log.txt", "finished: S = 3.000\n");
+        write(dir / "series.csv", "S,trailing_wall_push\n3,1e6\n");
+        std::ostringstream m;
+        m << "S,alpha_deg,beta_deg,H_over_h0\n0.5,30,30,0.2\n1," << alpha << ",8,0.7\n3," << alpha << ",8,0.7\n";
+        write(dir / "measured.csv", m.str());
+    };
+    make("v", 1, 5.0);
+    make("v", 2, 7.0);
+    make("v", 3, 9.0);
+    make("v", 4, 20.0);
+    make("v-nosleep", 1, 6.0);
+    make("v-nosleep", 2, 7.5);
+    make("v-nosleep", 3, 10.0);
+    std::string out;
+    ASSERT_EQ(run("ORODEM=" + quote((root / "fake-orodem").string()) + " /usr/bin/python3 " +
+                      quote(std::string(ORODEM_SOURCE_DIR) + "/scripts/quasi-static-check") + " --config c.toml" +
+                      " --out " + quote((root / "out").string()) + " --arms v,v-nosleep --seeds 1,2,3,4 --from 1" +
+                      " --report-only",
+                  &out),
+              0)
+        << out;
+    EXPECT_HAS(out, "| v-nosleep | 0.05 | 0.0003 | 0.0004 | 3 | 7.83 ± 1.17 (Δ -2.42, s.e. 3.55) |");
+    EXPECT_HAS(out, "paired difference v-nosleep - v (seeds 1,2,3): alpha +0.83 ± 0.17 deg, beta +0.00 ± 0.00 deg, "
+                    "H/h0 +0.000 ± 0.000");
+}
+
 TEST_F(PlotRender, SeedGroupsJoinTheRunsThatDifferOnlyInTheirSeeds) {
     const std::string a = config_text(0.3), b = config_text(0.5);
     auto seeded = [](std::string t, int seed) {

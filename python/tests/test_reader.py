@@ -96,7 +96,7 @@ def test_snapshot_equals_vtks_reading(run_dir):
     pts = vtk_to_numpy(grid.GetPoints().GetData())
     assert np.array_equal(pts[:, 0], s["x"]) and np.array_equal(pts[:, 1], s["y"])
     pd = grid.GetPointData()
-    assert pd.GetNumberOfArrays() == 15  # 9 per disc + the interval's strain (4) + shear_strain_total + rel_disp_abs
+    assert pd.GetNumberOfArrays() == 16  # 10 per disc (fixed, asleep) + the interval's strain (4) + shear_strain_total + rel_disp_abs
     for k in range(pd.GetNumberOfArrays()):
         a = pd.GetArray(k)
         assert np.array_equal(vtk_to_numpy(a), s[a.GetName()]), a.GetName()

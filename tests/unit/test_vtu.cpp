@@ -71,6 +71,7 @@ ParticleStore make_store(std::vector<double>& rel_per_slot) {
         p.side[s] = side_of(k);
     }
     p.fix(3);  // fixed: zero velocity
+    p.flags[6] |= kFlagAsleep;  // in a sleeping zone (slot 6 holds id 6 before the permutation)
     // Permute slots: slot s holds id perm[s].
     const std::vector<std::size_t> perm = {4, 8, 0, 6, 2, 1, 7, 3, 5};
     p.for_each_column([&](auto& col) {
@@ -120,6 +121,9 @@ TEST(Vtu, RoundTripIsBitExactInIdOrder) {
     if (const auto* fixed = d.find("fixed")) {
         for (std::size_t k = 0; k < kN; ++k) EXPECT_EQ((*fixed)[k], k == 3 ? 1.0 : 0.0);
     }
+    const auto* asleep = d.find("asleep");
+    ASSERT_NE(asleep, nullptr);
+    for (std::size_t k = 0; k < kN; ++k) EXPECT_EQ((*asleep)[k], k == 6 ? 1.0 : 0.0);
 
     // An empty rel_disp column is written as zeros.
     write_vtu(file, p, {});

@@ -36,7 +36,7 @@ void write_vtu(const std::string& path, const ParticleStore& p, const std::vecto
     // Discs in id order, so that files of one run line up point by point.
     std::vector<double> pts(3 * n), vel(3 * n), radius(n), depth(n), omega(n), rd(n, 0.0);
     std::vector<std::int64_t> id(n), conn(n), offs(n);
-    std::vector<std::int32_t> side(n), cluster(n), fixed(n);
+    std::vector<std::int32_t> side(n), cluster(n), fixed(n), asleep(n);
     std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
     for (std::uint32_t k = 0; k < n; ++k) {
         const std::size_t s = p.slot_of_id[k];
@@ -50,6 +50,7 @@ void write_vtu(const std::string& path, const ParticleStore& p, const std::vecto
         side[k] = p.side[s];
         cluster[k] = p.cluster[s];
         fixed[k] = (p.flags[s] & kFlagFixed) ? 1 : 0;
+        asleep[k] = (p.flags[s] & kFlagAsleep) ? 1 : 0;
         conn[k] = k;
         offs[k] = k + 1;
     }
@@ -62,7 +63,8 @@ void write_vtu(const std::string& path, const ParticleStore& p, const std::vecto
         make_array("cluster_id", "Int32", 1, cluster),
         make_array("rel_disp", "Float64", 1, rd),
         make_array("omega", "Float64", 1, omega),
-        make_array("fixed", "Int32", 1, fixed)};
+        make_array("fixed", "Int32", 1, fixed),
+        make_array("asleep", "Int32", 1, asleep)};
     std::vector<Array> all_point_data = point_data;
     if (strain && strain->shear.size() == n) {  // by id, as the points are written
         all_point_data.push_back(make_array("shear_strain", "Float64", 1, strain->shear));

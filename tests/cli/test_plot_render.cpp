@@ -578,6 +578,39 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     EXPECT_HAS(out, "mu_bp 0.5: 8.00 ± 0.10 (2 runs) | not reproduced |");
 }
 
+TEST_F(PlotRender, CheckTaperFitsTheSnapshotsSurfaceAndJudgesTheSeriesAlpha) {
+    // One snapshot whose surface is a wedge of known tapers: one disc (R = 0.5 m)
+    // per 1 m column, its top on a plate at 10 m, rising at 10 deg from x = -60 m
+    // to the peak at x = 0 and falling at 20 deg to the retroside plate. Its S
+    // falls short of the nominal 2 (1.999996, as the outputs of a run do), and
+    // --from 2 must still take it. The fit gives 10 and 20 deg to round-off, so
+    // a series alpha of 11.5 is 1.50 deg off (within 2) and 12.5 is 2.50
+    // (exceeds: exit 1); beta is printed, not judged.
+    const fs::path dir = work_ / "taper-run";
+    fs::create_directories(dir / "snapshots");
+    write(dir / "config.toml", "[packing]\nh0 = 10.0\nr_max = 0.5\n");
+    orodem::ParticleStore p;
+    const double ta = std::tan(10.0 * M_PI / 180.0), tb = std::tan(20.0 * M_PI / 180.0);
+    for (int k = 0; k <= 160; ++k) {
+        const double x = -100.0 + k;
+        const double top = x < -60.0 ? 10.0 : x <= 0.0 ? 10.0 + (x + 60.0) * ta : std::max(10.0, 10.0 + 60.0 * ta - x * tb);
+        p.add({x, top - 0.5}, 0.5, 2500.0);
+    }
+    orodem::write_vtu((dir / "snapshots" / "S02.000.vtu").string(), p, {});
+    orodem::write_pvd((dir / "run.pvd").string(), {{1.999996, "snapshots/S02.000.vtu"}});
+    const std::string script =
+        "/usr/bin/python3 " + quote(std::string(ORODEM_SOURCE_DIR) + "/scripts/check-taper") + " " + quote(dir.string()) +
+        " --from 2";
+    std::string out;
+    write(dir / "series.csv", "S,alpha_deg,beta_deg\n1.999996,11.5,19\n");
+    ASSERT_EQ(run(script, &out), 0) << out;
+    EXPECT_HAS(out, " 2.000        11.50        10.00        19.00        20.00");
+    EXPECT_HAS(out, "median |alpha(series) - alpha(fit)| = 1.50 deg over 1 outputs: within the tolerance of 2 deg");
+    write(dir / "series.csv", "S,alpha_deg,beta_deg\n1.999996,12.5,19\n");
+    EXPECT_EQ(run(script, &out), 1) << out;
+    EXPECT_HAS(out, "= 2.50 deg over 1 outputs: EXCEEDS the tolerance of 2 deg");
+}
+
 TEST_F(PlotRender, QuasiStaticCheckPairsEachArmWithItsReferenceSeedBySeed) {
     // Arms v and v-nosleep (the sleeping zones off), measured by a stand-in
     // orodem: alpha of v is 5, 7, 9 for seeds 1-3 and 20 for a seed 4 that the

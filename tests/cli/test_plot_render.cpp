@@ -440,6 +440,28 @@ TEST_F(PlotRender, ValidateFindingsScriptAveragesTheRetrosideTwoSlopes) {
     EXPECT_HAS(out, "| old | 1 | n/a | n/a | n/a |");
 }
 
+// A finished exp1 run for scripts/validate-findings (h0 = 10 m; the trailing
+// wall at -(s_max + pro_margin) h0): config.toml, log.txt and a first
+// snapshot whose plate window (1 h0 from the wall to 2 h0 before S) holds ten
+// discs of 104 m² (one more disc sits outside it). With s_max + pro_margin =
+// 16 the window is 1300 m² of layer: area fraction 0.8. The caller writes
+// series.csv, starting with kFindingsSeriesHeader.
+namespace {
+const char* const kFindingsSeriesHeader =
+    "S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,toe_pro_x_over_h0,toe_retro_x_over_h0,section_push\n";
+void write_findings_run(const fs::path& dir, double s_max, double pro_margin) {
+    fs::create_directories(dir / "snapshots");
+    write(dir / "config.toml", "[wedge]\ns_max = " + std::to_string(s_max) + "\npro_margin = " + std::to_string(pro_margin) +
+                                   "\n[packing]\nh0 = 10.0\n");
+    write(dir / "log.txt", "finished: S = " + std::to_string(s_max) + "\n");
+    orodem::ParticleStore p;
+    for (int k = 0; k < 10; ++k) p.add({-140.0 + 12.0 * k, 5.0}, std::sqrt(104.0 / M_PI), 2500.0);
+    p.add({0.0, 5.0}, 3.0, 2500.0);
+    orodem::write_vtu((dir / "snapshots" / "S0.vtu").string(), p, {});
+    orodem::write_pvd((dir / "run.pvd").string(), {{0.0, "snapshots/S0.vtu"}});
+}
+}  // namespace
+
 TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     // A manifest of three exp1 groups (mu_bp 0.1, 0.3, 0.5), two seeds each,
     // hand-made series S = 0.25 ... 6: alpha = 5 ± 0.1 (the seeds) for S < 3
@@ -455,18 +477,10 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     const fs::path root = work_ / "verdicts";
     auto make = [&](const std::string& group, int seed, double a, double s1 = 5.0) {
         const fs::path dir = root / "runs" / "mid" / group / ("seed" + std::to_string(seed));
-        fs::create_directories(dir / "snapshots");
-        write(dir / "config.toml", "[wedge]\ns_max = 6.0\npro_margin = 10.0\n[packing]\nh0 = 10.0\n");
-        write(dir / "log.txt", "finished: S = 6.000\n");
-        orodem::ParticleStore p;
-        for (int k = 0; k < 10; ++k) p.add({-140.0 + 12.0 * k, 5.0}, std::sqrt(104.0 / M_PI), 2500.0);
-        p.add({0.0, 5.0}, 3.0, 2500.0);
-        orodem::write_vtu((dir / "snapshots" / "S0.vtu").string(), p, {});
-        orodem::write_pvd((dir / "run.pvd").string(), {{0.0, "snapshots/S0.vtu"}});
+        write_findings_run(dir, 6.0, 10.0);
         const double off = seed == 1 ? -1.0 : 1.0;
         std::ostringstream s;
-        s << "S,H_over_h0,alpha_deg,beta_deg,peak_dx_over_h0,dilation_pct,toe_pro_x_over_h0,toe_retro_x_over_h0,"
-             "section_push\n";
+        s << kFindingsSeriesHeader;
         for (int k = 1; k <= 24; ++k) {
             const double S = 0.25 * k;
             s << S << ',' << 0.4 * std::sqrt(S) << ',' << (S < 3.0 ? s1 + 0.1 * off : a + 0.5 * off) << ','
@@ -576,6 +590,64 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     }
     ASSERT_EQ(run(script + " --verdicts " + quote((root / "m.toml").string()), &out), 0) << out;
     EXPECT_HAS(out, "mu_bp 0.5: 8.00 ± 0.10 (2 runs) | not reproduced |");
+}
+
+TEST_F(PlotRender, ValidateFindingsArchivesRunsAsRecordsThatTheVerdictsRead) {
+    // Two seeds of one exp1 group: stage-1 alpha 5 ± 0.1, the plate's push
+    // 0.5 ± 0.1 rho g h0^2, a first snapshot with layer area fraction 0.8 (as
+    // in the verdicts test above). A stand-in orodem measures alpha 7 at
+    // S = 1.5 and 2.5 and prints a fault table with an active retro fault
+    // rooted 0.1 h0 from S at S = 1 and 2 and 2 h0 from it at S = 3. `--archive`
+    // writes each run's record: its series as measured (stage 1 becomes
+    // 5.50 ± 0.07), its fault table and eta. With the run directories gone
+    // and no orodem, `--verdicts` reads the records and gives the same numbers:
+    // the push row (0.42 of the passive strength needs eta from the record)
+    // and a retro fault at S in 2 of the 9 outputs from S = 1 (0.22 ± 0.00).
+    const fs::path root = work_ / "archive";
+    for (int seed : {1, 2}) {
+        const fs::path dir = root / "runs" / "mid" / "exp1_mubp0.1" / ("seed" + std::to_string(seed));
+        write_findings_run(dir, 3.0, 13.0);
+        const double off = seed == 1 ? -1.0 : 1.0;
+        std::ostringstream s;
+        s << kFindingsSeriesHeader;
+        for (int k = 1; k <= 12; ++k)
+            s << 0.25 * k << ",0.4," << 5.0 + 0.1 * off << ",20,0,95,-5,2.5," << (0.5 + 0.1 * off) * 2500.0 * 9.81 * 100.0
+              << "\n";
+        write(dir / "series.csv", s.str());
+    }
+    write(root / "m.toml", "root = \"runs\"\nrecords = \"records\"\n[mid.\"exp1_mubp0.1\"]\nconfig = \"c.toml\"\n"
+                           "seeds = [1, 2]\nphi_peak_deg = 30\n");
+    write(root / "fake-orodem",
+          "#!/bin/sh\ncase \"$1\" in\n--version) echo 9.9; exit 0;;\nmeasure) printf 'S,alpha_deg\\n1.5,7\\n2.5,7\\n'; exit 0;;\n"
+          "faults) printf 'S,id,vergence,dip_deg,root_x_over_h0,tip_x_over_h0,width_over_h0,slip_over_h0,active\\n"
+          "1,0,retro,30,0.1,1,0.1,0.1,1\\n2,0,retro,30,-0.1,1,0.1,0.1,1\\n3,0,retro,30,2,3,0.1,0.1,1\\n'; exit 0;;\nesac\nexit 1\n");
+    fs::permissions(root / "fake-orodem", fs::perms::owner_all);
+    const std::string script = "/usr/bin/python3 " + quote(std::string(ORODEM_SOURCE_DIR) + "/scripts/validate-findings");
+    std::string out;
+    ASSERT_EQ(run("ORODEM=" + quote((root / "fake-orodem").string()) + " " + script + " --archive " +
+                      quote((root / "m.toml").string()),
+                  &out),
+              0)
+        << out;
+    const fs::path rec = root / "records" / "mid" / "exp1_mubp0.1" / "seed1";
+    for (const char* f : {"series.csv", "faults.csv", "config.toml", "log.txt", "record.toml"})
+        EXPECT_TRUE(fs::exists(rec / f)) << f;
+    EXPECT_FALSE(fs::exists(rec / "run.pvd"));
+    {
+        const std::string r = slurp(rec / "record.toml");
+        const std::size_t at = r.find("eta = ");
+        ASSERT_NE(at, std::string::npos) << r;
+        EXPECT_NEAR(std::stod(r.substr(at + 6)), 0.8, 1e-12) << r;
+    }
+    EXPECT_HAS(slurp(rec / "record.toml"), "orodem 9.9");
+    fs::remove_all(root / "runs");
+    ASSERT_EQ(run("ORODEM=/nonexistent " + script + " --verdicts " + quote((root / "m.toml").string()) + " --size mid",
+                  &out),
+              0)
+        << out;
+    EXPECT_HAS(out, "mu_bp 0.1: 5.50 ± 0.07 (2 runs)");
+    EXPECT_HAS(out, "| exp1_mubp0.1 | 0.50 ± 0.10 (2 runs) | 0.800 | 1.20 | 0.42 |");
+    EXPECT_HAS(out, "h0 of it: mu_bp 0.1: 0.22 ± 0.00 (2 runs)");
 }
 
 TEST_F(PlotRender, CheckTaperFitsTheSnapshotsSurfaceAndJudgesTheSeriesAlpha) {

@@ -1,6 +1,7 @@
 // `orodem plot` and `orodem render` on a run directory built by hand:
 // config.toml, series.csv (with NaN rows: no wedge yet), two VTU snapshots
 // and run.pvd. Also the legend labels and the series reader directly.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "cli/cli_util.hpp"
@@ -681,6 +682,52 @@ TEST_F(PlotRender, CheckTaperFitsTheSnapshotsSurfaceAndJudgesTheSeriesAlpha) {
     write(dir / "series.csv", "S,alpha_deg,beta_deg\n1.999996,12.5,19\n");
     EXPECT_EQ(run(script, &out), 1) << out;
     EXPECT_HAS(out, "= 2.50 deg over 1 outputs: EXCEEDS the tolerance of 2 deg");
+
+    // A stepped prowedge: a frontal imbricate rising at 5 deg from x = -80 m to
+    // -40 m (10 to 13.50 m), one low column at -40 m (down to the plate), then
+    // the main front at 15 deg to the peak at 0 (24.22 m). The toe walk on the
+    // three-column mean (default) passes the low column (mean 12.4 m, above
+    // the level + 1 m) and ends at the imbricate's foot; its fit takes the
+    // columns between 20% and 80% of the 14.22 m relief on both steps
+    // (x = -47 ... -41 and -39 ... -11), whose least-squares slope this test
+    // computes. The first-dip walk ends at the low column and fits the front
+    // alone: 15 deg.
+    const fs::path step = work_ / "taper-step";
+    fs::create_directories(step / "snapshots");
+    write(step / "config.toml", "[packing]\nh0 = 10.0\nr_max = 0.5\n");
+    const double t5 = std::tan(5.0 * M_PI / 180.0), t15 = std::tan(15.0 * M_PI / 180.0);
+    auto top = [&](double x) {
+        if (x < -80.0) return 10.0;
+        if (x < -40.0) return 10.0 + (x + 80.0) * t5;
+        if (x == -40.0) return 10.0;
+        if (x <= 0.0) return 10.0 + 40.0 * t5 + (x + 40.0) * t15;
+        return std::max(10.0, 10.0 + 40.0 * t5 + 40.0 * t15 - x * tb);
+    };
+    orodem::ParticleStore q;
+    std::vector<double> fx, fy;
+    const double relief = top(0.0) - 10.0;
+    for (int k = 0; k <= 160; ++k) {
+        const double x = -100.0 + k;
+        q.add({x, top(x) - 0.5}, 0.5, 2500.0);
+        const double r = (top(x) - 10.0) / relief;
+        if (x >= -80.0 && x <= 0.0 && r >= 0.2 && r <= 0.8) fx.push_back(x), fy.push_back(top(x));
+    }
+    double mx = 0, my = 0;
+    for (std::size_t k = 0; k < fx.size(); ++k) mx += fx[k] / fx.size(), my += fy[k] / fx.size();
+    double sxy = 0, sxx = 0;
+    for (std::size_t k = 0; k < fx.size(); ++k) sxy += (fx[k] - mx) * (fy[k] - my), sxx += (fx[k] - mx) * (fx[k] - mx);
+    const double both = std::atan(sxy / sxx) * 180.0 / M_PI;
+    ASSERT_EQ(fx.size(), 36u);  // 7 imbricate columns, 29 of the front
+    orodem::write_vtu((step / "snapshots" / "S02.000.vtu").string(), q, {});
+    orodem::write_pvd((step / "run.pvd").string(), {{2.0, "snapshots/S02.000.vtu"}});
+    write(step / "series.csv", "S,alpha_deg,beta_deg\n2,15,20\n");
+    const std::string check =
+        "/usr/bin/python3 " + quote(std::string(ORODEM_SOURCE_DIR) + "/scripts/check-taper") + " " + quote(step.string());
+    ASSERT_EQ(run(check + " --toe first-dip", &out), 0) << out;
+    EXPECT_HAS(out, " 2.000        15.00        15.00");
+    EXPECT_EQ(run(check + " --tolerance 1", &out), 1) << out;  // 15 against the fit over both steps, 13.92
+    EXPECT_HAS(out, fmt::format(" 2.000        15.00   {:10.2f}", both));
+    EXPECT_GT(15.0 - both, 1.0);
 }
 
 TEST_F(PlotRender, QuasiStaticCheckPairsEachArmWithItsReferenceSeedBySeed) {

@@ -773,6 +773,32 @@ TEST_F(PlotRender, QuasiStaticCheckPairsEachArmWithItsReferenceSeedBySeed) {
     EXPECT_HAS(out, "| v-nosleep | 0.05 | 0.0003 | 0.0004 | 3 | 7.83 ± 1.17 (Δ -2.42, s.e. 3.55) |");
     EXPECT_HAS(out, "paired difference v-nosleep - v (seeds 1,2,3): alpha +0.83 ± 0.17 deg, beta +0.00 ± 0.00 deg, "
                     "H/h0 +0.000 ± 0.000");
+
+    // The equivalence rule (--margins 2,2,0.1). v-nosleep: alpha |Δ| 2.42
+    // with 2 s.e. 7.10 is neither within the margin nor beyond it
+    // (undecided, and no seed count settles a |Δ| above the margin); beta
+    // and H are equal with no spread (accepted). A 2v arm at alpha 30, 30.5,
+    // 31 (sd 0.5) lies 20.25 from v, 13.5 beyond 2 s.e. = 2 hypot(0.289,
+    // 3.351) = 6.73: refuted. The one-s.e. rule says "no" for both.
+    make("2v", 1, 30.0);
+    make("2v", 2, 30.5);
+    make("2v", 3, 31.0);
+    const std::string base = "ORODEM=" + quote((root / "fake-orodem").string()) + " /usr/bin/python3 " +
+                             quote(std::string(ORODEM_SOURCE_DIR) + "/scripts/quasi-static-check") +
+                             " --config c.toml --out " + quote((root / "out").string()) +
+                             " --arms v,2v,v-nosleep --seeds 1,2,3,4 --from 1 --report-only";
+    ASSERT_EQ(run(base + " --margins 2,2,0.1", &out), 0) << out;
+    EXPECT_HAS(out, "equivalence v-nosleep - v: undecided: alpha undecided (|Δ| 2.42, 2 s.e. 7.10, margin 2 deg; "
+                    "seeds per arm to settle: none), beta accepted (|Δ| 0.00, 2 s.e. 0.00, margin 2 deg; seeds per "
+                    "arm to settle: 2), H/h0 accepted (|Δ| 0.000, 2 s.e. 0.000, margin 0.1; seeds per arm to settle: 2)");
+    EXPECT_HAS(out, "equivalence 2v - v: refuted: alpha refuted (|Δ| 20.25, 2 s.e. 6.73, margin 2 deg;");
+    // With a margin beyond the difference: the seeds that would settle it.
+    // 2v against v with margin 25: pooled sd sqrt((0.25 + 44.92) / 2) =
+    // 4.752 (v's four seeds: sd 6.70), 8 sd² / (25 - 20.25)² = 8.0 -> 9.
+    ASSERT_EQ(run(base + " --margins 25,2,0.1", &out), 0) << out;
+    EXPECT_HAS(out, "alpha undecided (|Δ| 20.25, 2 s.e. 6.73, margin 25 deg; seeds per arm to settle: 9)");
+    EXPECT_NE(run(base + " --margins 2,0,0.1", &out), 0);
+    EXPECT_HAS(out, "--margins: '2,0,0.1' is not three positive numbers");
 }
 
 TEST_F(PlotRender, SeedGroupsJoinTheRunsThatDifferOnlyInTheirSeeds) {

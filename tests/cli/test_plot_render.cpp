@@ -501,6 +501,7 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     std::string groups;
     for (const char* g : {"exp1_mubp0.1", "exp1_mubp0.3", "exp1_mubp0.5"})
         groups += std::string("[mid.\"") + g + "\"]\nconfig = \"configs/mid/exp1.toml\"\nseeds = [1, 2]\nphi_peak_deg = 30\n" +
+                  "phi_cs_deg = 26\nmu_b = 0.3\n" +
                   "[mid.\"" + g + "_traction\"]\nconfig = \"configs/mid/exp1.toml\"\nseeds = [1, 2]\n";
     // The critical wedge's packings: the frontal thrust roots 3 h0 ahead of
     // the toe in the hexagonal packing (one run: no seed changes a lattice),
@@ -562,18 +563,28 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
         // run's own others (section_push). A stand-in measure gives alpha 7 at S = 1.5 and 2.5: each
         // run's stage-1 mean becomes (6 (5 ± 0.1) + 2 * 7) / 8 = 5.5 ± 0.075 (s.e. 0.075, printed 0.07),
         // and the push rows stay.
+        // Its `taper` gives Dahlen's critical alpha 4.25 deg for every group: the
+        // critical-taper table, and with --taper-plot its picture (matplotlib).
         write(root / "fake-orodem",
-              "#!/bin/sh\nif [ \"$1\" = measure ]; then printf 'S,alpha_deg\\n1.5,7\\n2.5,7\\n'; exit 0; fi\nexit 1\n");
+              "#!/bin/sh\nif [ \"$1\" = measure ]; then printf 'S,alpha_deg\\n1.5,7\\n2.5,7\\n'; exit 0; fi\n"
+              "if [ \"$1\" = taper ]; then printf 'critical taper (compressive branch): alpha = 4.25 deg\\n'; exit 0; fi\n"
+              "exit 1\n");
         fs::permissions(root / "fake-orodem", fs::perms::owner_all);
         std::string again;
+        const fs::path plot = root / "taper-SIZE.png";
         ASSERT_EQ(run("ORODEM=" + quote((root / "fake-orodem").string()) + " /usr/bin/python3 " +
                           quote(std::string(ORODEM_SOURCE_DIR) + "/scripts/validate-findings") + " --verdicts " +
-                          quote((root / "m.toml").string()),
+                          quote((root / "m.toml").string()) + " --taper-plot " + quote(plot.string()),
                       &again),
                   0)
             << again;
         EXPECT_HAS(again, "mu_bp 0.1: 5.50 ± 0.07 (2 runs); mu_bp 0.3: 5.50 ± 0.07 (2 runs)");
         EXPECT_HAS(again, "| exp1_mubp0.1 | 0.50 ± 0.10 (2 runs) | 0.800 | 1.20 | 0.42 |");
+        EXPECT_HAS(again, "| exp1_mubp0.1 | 0.3 | 30 / 26 deg |");
+        EXPECT_HAS(again, "| 4.25 | 4.25 |");
+        EXPECT_HAS(again, "![measured prowedge taper against critical taper, intermediate size](" +
+                              (root / "taper-mid.png").string() + ")");
+        EXPECT_GT(fs::file_size(root / "taper-mid.png"), 1000u);
     }
     // One group 3 deg above the others at stage 1 (seeds 0.1 apart): outside
     // the ±2 deg of "alike" and beyond 2 s.e., so the finding is refuted. (1 deg

@@ -113,18 +113,19 @@ int cmd_check(const CommonArgs& a) {
                    c.wedge.pro_margin, pe.front_h0, c.wedge.s_max, pe.alpha_deg, pe.phi_deg, pe.phi_b_deg,
                    pe.pro_margin_min);
         if (const std::string w = short_plate_warning(c, pe); !w.empty()) fmt::print(stderr, "orodem: warning: {}\n", w);
-        // Rates of wedge runs on the 2-core development machine (Intel Xeon
-        // VM) per awake disc, fitted to the measured paper-size exp1 (about
-        // 1.9 h on 2 threads to S = 8, docs/benchmarks.md "Wall times"), in
-        // which 45% of the discs were awake on average over S = 0-8; 1 thread
-        // at the canonical pile's 2-thread speed-up of 1.83.
-        constexpr double kRate1 = 1.3e7, kRate2 = 2.4e7;  // awake disc-steps/s, 1 and 2 threads
+        // Rates of wedge runs per awake disc on the 2-core development host of
+        // 4 Dec 2026 (AMD EPYC Zen 5 VM; docs/benchmarks.md "Wall times"): 2
+        // threads from the paper-size exp1 (3,120 s of steps to S = 8, about
+        // 41% of its discs awake), 1 thread from the intermediate exp1 runs
+        // (3.5e7 beside another run, 45% awake). The Intel host of 3 Dec ran
+        // the same code 2.5 times slower: other machines differ as much.
+        constexpr double kRate1 = 3.0e7, kRate2 = 5.0e7;  // awake disc-steps/s, 1 and 2 threads
         const double awake = c.wedge.sleep ? 0.45 : 1.0;
         const double work = steps * static_cast<double>(n) * 0.8 * awake;  // 0.8: the cut to h0
         fmt::print("steps to S = {:g}       = {:.3g} ({:.3g} {}disc-steps)\n", c.wedge.s_max, steps, work,
                    c.wedge.sleep ? "awake " : "");
         fmt::print("estimated run time     = {} on 1 thread, {} on 2 (at {:.2g} and {:.2g} {}disc-steps/s measured on "
-                   "2 cores{}; plus settling if not cached)\n",
+                   "the 2-core development host{}; machines differ by 2-3x; plus settling if not cached)\n",
                    duration_text(work / kRate1), duration_text(work / kRate2), kRate1, kRate2,
                    c.wedge.sleep ? "awake " : "", c.wedge.sleep ? ", 45% of the discs awake" : "");
         if (c.wedge.drag_gain > 0.0) {

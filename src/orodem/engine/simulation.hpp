@@ -15,7 +15,9 @@
 //   boundaries' add_forces; second half kick; boundaries' after_step.
 // With no boundaries the walls move first and the rest runs in one parallel
 // region, each disc kicked right after its force is summed (the same
-// operations, so the same results). No allocation happens in a step once the
+// operations, so the same results). With boundaries a step that needs no
+// rebuild also runs in one parallel region, the boundaries' hooks on one
+// thread between barriers. No allocation happens in a step once the
 // stores have reached their size.
 #pragma once
 
@@ -174,6 +176,12 @@ private:
     void kick();             // second half kick
     void pair_forces_gather_kick();  // phases A, B and kick() in one parallel region
     bool step_in_one_region(double wall_move);  // kick_drift + (no rebuild) A, B, kick; false: rebuild first
+    // With boundaries: kick_drift, walls, after_drift, and (no rebuild) A, B,
+    // add_forces, kick, after_step in one parallel region, the hooks on one
+    // thread; false: a rebuild is due (drift, walls and after_drift done).
+    // stamp: omp_get_wtime() at the ends of the drift, the after_drift hooks,
+    // phase A, phase B, add_forces and the kick (phase timers).
+    bool boundary_step_in_one_region(double (&stamp)[6]);
     double move_walls();     // walls move by dt; returns the largest wall shift since the rebuild [m]
     PairKernelData pair_kernel_data(bool update_history);
     GatherData gather_data(bool update_history, bool kick);

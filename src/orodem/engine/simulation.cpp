@@ -260,6 +260,11 @@ void Simulation::compute_forces() {
 
 namespace {
 
+/// Awake discs from which a wedge step without a rebuild runs in one parallel
+/// region (step()): the intermediate wedge has 3,000-6,000 awake, the demo
+/// wedges 500-1,700. Results do not depend on it.
+constexpr std::uint32_t kOneRegionMinAwake = 2048;
+
 /// The first half kick and the drift of disc i; returns |x - x_ref|².
 inline double kick_drift_disc(ParticleStore& p, const std::vector<Vec2>& x_ref, std::size_t i, double dt,
                               double half) {
@@ -348,11 +353,12 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
     // operations on the same slots in the same order as kick_drift(),
     // move_walls(), the hooks, pair_forces(false), gather_forces(false),
     // kick(), so the same results, with one fork a step instead of four:
-    // 1.55 times faster on 2 threads for a 10,000-disc wedge (step() calls
-    // it from kParallelMin awake discs on). The hooks run on one thread between barriers (their loops cover the
-    // few discs on a base; a nested region inside a hook runs on one
-    // thread). A rebuild step ends the region after the after_drift hooks
-    // and step() finishes it phase by phase, as before.
+    // about 1.35 times faster on 2 threads for a 10,000-disc wedge
+    // (docs/benchmarks.md; step() calls it from kOneRegionMinAwake awake
+    // discs on). The hooks run on one thread between barriers (their loops
+    // cover the few discs on a base; a nested region inside a hook runs on
+    // one thread). A rebuild step ends the region after the after_drift
+    // hooks and step() finishes it phase by phase, as before.
     ParticleStore& p = particles;
     const double dt = params.dt;
     const double half = 0.5 * dt;
@@ -479,13 +485,13 @@ void Simulation::step() {
             lap(times_.gather);
         }
     } else {
-        // From kParallelMin awake discs on, a step without a rebuild runs in
-        // one parallel region; below, the phases run one by one (only phase A
-        // then has enough pairs to split, and barriers would cost more than
-        // the work: a demo-size wedge, 12% slower in one region).
+        // From kOneRegionMinAwake awake discs on, a step without a rebuild
+        // runs in one parallel region; below, the phases run one by one (the
+        // barriers would cost more than the work: a demo-size wedge with about
+        // 1,000 awake discs ran 12% slower in one region).
         double stamp[6] = {};
         bool drifted = false, done = false;
-        if (static_cast<long long>(awake_end_ - awake_begin_) >= kParallelMin) {
+        if (awake_end_ - awake_begin_ >= kOneRegionMinAwake) {
             done = boundary_step_in_one_region(stamp);
             drifted = true;
             lap_to(times_.integrate, stamp[0]);

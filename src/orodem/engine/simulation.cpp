@@ -277,29 +277,40 @@ inline double kick_drift_disc(ParticleStore& p, const std::vector<Vec2>& x_ref, 
 
 }  // namespace
 
+bool Simulation::drift_range(long long& b, long long& e) const {
+    // Inside advance(), the discs outside the drift range (sleeping or fixed,
+    // constant velocity) fall behind and catch up later (engine/sleep.cpp).
+    const long long n = static_cast<long long>(particles.size());
+    const bool lazy = defer_drift_ && (drift_begin_ > 0 || static_cast<long long>(drift_end_) < n);
+    b = lazy ? drift_begin_ : 0;
+    e = lazy ? drift_end_ : n;
+    return lazy;
+}
+
+void Simulation::end_drift(bool lazy, double max_d2) {
+    if (lazy) {
+        ++drift_lag_;
+        // Their displacement since the rebuild is the rigid motion u t of
+        // their side: the rebuild test sees it without their positions.
+        const double t = static_cast<double>(step_count + 1 - last_rebuild_step_) * params.dt;
+        const SleepParams& sp = params.sleep;
+        max_d2 = std::max(max_d2, t * t * std::max(norm2(sp.u_left), norm2(sp.u_right)));
+    }
+    max_disp2_ = max_d2;
+}
+
 void Simulation::kick_drift() {
     ParticleStore& p = particles;
     const double dt = params.dt;
     const double half = 0.5 * dt;
     const auto& x_ref = builder_.x_ref();
     double max_d2 = max_disp2_;
-    const long long n = static_cast<long long>(p.size());
-    // Inside advance(), the discs outside the drift range (sleeping or fixed,
-    // constant velocity) fall behind and catch up later (engine/sleep.cpp).
-    const bool lazy = defer_drift_ && (drift_begin_ > 0 || static_cast<long long>(drift_end_) < n);
-    const long long b = lazy ? drift_begin_ : 0, e = lazy ? drift_end_ : n;
+    long long b = 0, e = 0;
+    const bool lazy = drift_range(b, e);
 #pragma omp parallel for schedule(static) if(e - b >= kParallelMin) reduction(max : max_d2)
     for (long long ii = b; ii < e; ++ii)
         max_d2 = std::max(max_d2, kick_drift_disc(p, x_ref, static_cast<std::size_t>(ii), dt, half));
-    if (lazy) {
-        ++drift_lag_;
-        // Their displacement since the rebuild is the rigid motion u t of
-        // their side: the rebuild test sees it without their positions.
-        const double t = static_cast<double>(step_count + 1 - last_rebuild_step_) * dt;
-        const SleepParams& sp = params.sleep;
-        max_d2 = std::max(max_d2, t * t * std::max(norm2(sp.u_left), norm2(sp.u_right)));
-    }
-    max_disp2_ = max_d2;
+    end_drift(lazy, max_d2);
 }
 
 void Simulation::advance(std::uint64_t n) {
@@ -363,9 +374,8 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
     const double dt = params.dt;
     const double half = 0.5 * dt;
     const auto& x_ref = builder_.x_ref();
-    const long long n = static_cast<long long>(p.size());
-    const bool lazy = defer_drift_ && (drift_begin_ > 0 || static_cast<long long>(drift_end_) < n);
-    const long long db = lazy ? drift_begin_ : 0, de = lazy ? drift_end_ : n;
+    long long db = 0, de = 0;
+    const bool lazy = drift_range(db, de);
     const PairKernelData kd = pair_kernel_data(true);
     const GatherData gd = gather_data(true, false);
     const std::size_t pair0 = pairs_begin_, npairs = pairs_end_ - pairs_begin_;
@@ -380,13 +390,7 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
 #pragma omp single
         {
             stamp[0] = omp_get_wtime();
-            if (lazy) {  // as kick_drift()
-                ++drift_lag_;
-                const double t = static_cast<double>(step_count + 1 - last_rebuild_step_) * dt;
-                const SleepParams& sp = params.sleep;
-                max_d2 = std::max(max_d2, t * t * std::max(norm2(sp.u_left), norm2(sp.u_right)));
-            }
-            max_disp2_ = max_d2;
+            end_drift(lazy, max_d2);
             const double wall_move = move_walls();
             for (auto& b : boundaries) b->after_drift(*this);
             rebuild = needs_rebuild(wall_move);

@@ -162,6 +162,8 @@ private:
     // bench/bench_kernels.cpp times them one by one through KernelBench.
     friend struct KernelBench;
     void kick_drift();       // v += F/m dt/2, ω += T/I dt/2, x += v dt, θ += ω dt; max displacement
+    bool drift_range(long long& b, long long& e) const;  // slots this step drifts; true: lazy (advance())
+    void end_drift(bool lazy, double max_d2);  // max_disp2_ from the drift's max (plus the lazy discs' bound)
     bool needs_rebuild(double wall_move) const;
     void rebuild_pairs();
     // Sleeping zones (engine/sleep.cpp): the bounds from the motion since the

@@ -16,6 +16,7 @@
 
 #include <fmt/format.h>
 
+#include "orodem/core/angles.hpp"
 #include "orodem/core/error.hpp"
 #include "orodem/io/config.hpp"
 #include "orodem/io/files.hpp"
@@ -32,8 +33,6 @@ namespace fs = std::filesystem;
 namespace orodem {
 
 namespace {
-
-constexpr double kDeg = 180.0 / std::numbers::pi;
 
 Config load_calibration(const CommonArgs& a) {
     Config c = load(a);

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "orodem/analysis/critical_taper.hpp"
+#include "orodem/core/angles.hpp"
 #include "orodem/core/error.hpp"
 
 #include "commands.hpp"
@@ -17,7 +18,6 @@
 namespace orodem {
 
 int cmd_taper(double phi_deg, double phi_b_deg, double mu_b, double beta_deg) {
-    constexpr double kDeg = 180.0 / std::numbers::pi;
     if (!std::isfinite(phi_deg) || phi_deg <= 0.0 || phi_deg >= 90.0)
         throw ConfigError(fmt::format("--phi {:g}: the internal friction angle must be in (0, 90) degrees", phi_deg));
     const bool have_phib = !std::isnan(phi_b_deg), have_mu_b = !std::isnan(mu_b);

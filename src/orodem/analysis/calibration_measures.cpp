@@ -5,11 +5,11 @@
 #include <limits>
 #include <numbers>
 
+#include "orodem/core/angles.hpp"
 namespace orodem {
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kDeg = 180.0 / std::numbers::pi;
 
 void add_outer(Stress2& s, Vec2 f, Vec2 arm) {
     s.xx += f.x * arm.x;

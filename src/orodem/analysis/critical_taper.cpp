@@ -59,11 +59,11 @@
 
 #include <fmt/format.h>
 
+#include "orodem/core/angles.hpp"
 namespace orodem {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kHalfPi = 0.5 * std::numbers::pi;
 
 double rad(double deg) { return deg * kPi / 180.0; }

@@ -6,12 +6,12 @@
 #include <numeric>
 
 #include "orodem/analysis/neighbour_grid.hpp"
+#include "orodem/core/angles.hpp"
 
 namespace orodem {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 /// Principal axis of a set of points: centre, unit direction of the larger
 /// spread, and the standard deviations along and across it [m].

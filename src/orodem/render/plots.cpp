@@ -35,12 +35,12 @@ struct Curve {
     const std::vector<double>* hi = nullptr;
 };
 
-struct Panel {
+struct SeriesPanel {
     std::string title, ylabel;
     std::vector<Curve> curves;
 };
 
-void draw_panel(Canvas& cv, const plot::Figure& f, const Panel& p, Area a) {
+void draw_panel(Canvas& cv, const plot::Figure& f, const SeriesPanel& p, Area a) {
     // Data range over every finite point.
     double lo = INFINITY, hi = -INFINITY;
     for (const Curve& c : p.curves)
@@ -123,10 +123,10 @@ void plot_series(const std::vector<Series>& runs, const std::vector<std::string>
     if (s_lo > 0 && s_lo <= s_hi) s_lo = 0;  // S axes start at 0
     const Range xr = axis_range(s_lo, s_hi, 8);
 
-    Panel taper{"(a) Taper angles α, β", "angle (degrees)", {}};
-    Panel height{"(b) Wedge height", "H / h0", {}};
-    Panel peak{"(c) Peak deviation from the S point", "(x_peak − x_S) / h0", {}};
-    Panel dil{"(d) Dilation", "D (%)", {}};
+    SeriesPanel taper{"(a) Taper angles α, β", "angle (degrees)", {}};
+    SeriesPanel height{"(b) Wedge height", "H / h0", {}};
+    SeriesPanel peak{"(c) Peak deviation from the S point", "(x_peak − x_S) / h0", {}};
+    SeriesPanel dil{"(d) Dilation", "D (%)", {}};
     // Legend: which line is which angle (in black), then one colour per run,
     // over a swatch of its band when it has one.
     std::vector<plot::LegendEntry> legend = {{"α (prowedge)", {}, false, false, 0.0, true},
@@ -154,7 +154,7 @@ void plot_series(const std::vector<Series>& runs, const std::vector<std::string>
     const plot::Figure f = plot::figure_layout(o.width_px, 2, 2, kAspect, !o.title.empty(), legend);
     const auto canvas = make_canvas(format_of(path), f.width, f.height);
     plot::draw_title(*canvas, f, o.title);
-    const Panel* panels[] = {&taper, &height, &peak, &dil};
+    const SeriesPanel* panels[] = {&taper, &height, &peak, &dil};
     for (std::size_t k = 0; k < 4; ++k) {
         Area a = f.panel(k);
         a.xr = xr;

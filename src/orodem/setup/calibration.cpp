@@ -12,6 +12,7 @@
 #include "orodem/setup/wedge.hpp"
 #include "orodem/boundary/servo_wall.hpp"
 #include "orodem/core/error.hpp"
+#include "orodem/core/angles.hpp"
 #include "orodem/setup/packing.hpp"
 #include "orodem/setup/scenario.hpp"
 
@@ -19,7 +20,6 @@ namespace orodem {
 
 namespace {
 
-constexpr double kDeg = 180.0 / std::numbers::pi;
 
 void say(const CalibrationLog& log, const std::string& line) {
     if (log) log(line);

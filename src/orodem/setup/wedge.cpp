@@ -10,6 +10,7 @@
 #include "orodem/boundary/conveyor_traction.hpp"
 #include "orodem/boundary/coulomb_base.hpp"
 #include "orodem/boundary/fixed_retro.hpp"
+#include "orodem/core/angles.hpp"
 #include "orodem/core/error.hpp"
 #include "orodem/setup/scenario.hpp"
 
@@ -91,7 +92,6 @@ double bulk_friction_deg(const std::string& kind, double mu_i) {
 }
 
 PlateEstimate plate_estimate(const Config& c) {
-    constexpr double kDeg = 180.0 / M_PI;
     PlateEstimate e;
     e.phi_deg = bulk_friction_deg(c.packing.kind, c.material.mu);
     e.phi_b_deg = std::min(std::atan(c.wedge.mu_bp) * kDeg, e.phi_deg - 0.5);

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "orodem/core/angles.hpp"
+
 namespace orodem {
 
 namespace {

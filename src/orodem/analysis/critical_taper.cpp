@@ -60,6 +60,7 @@
 #include <fmt/format.h>
 
 #include "orodem/core/angles.hpp"
+
 namespace orodem {
 
 namespace {

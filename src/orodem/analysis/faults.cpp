@@ -12,7 +12,6 @@ namespace orodem {
 
 namespace {
 
-
 /// Principal axis of a set of points: centre, unit direction of the larger
 /// spread, and the standard deviations along and across it [m].
 struct Axis {

@@ -10,7 +10,6 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
-#include <numbers>
 #include <string>
 #include <vector>
 

@@ -4,7 +4,6 @@
 // and the small-angle approximation of Davis, Suppe & Dahlen (1983) beside
 // the lower one. Bad values: ConfigError naming the option (exit 2).
 #include <cmath>
-#include <numbers>
 #include <string>
 
 #include <fmt/format.h>

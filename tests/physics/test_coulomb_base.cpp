@@ -11,6 +11,7 @@
 #include <omp.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -225,6 +226,53 @@ TEST(CoulombBase, IdenticalAtOneToFourThreads) {
         EXPECT_GT(b.base->discs_sliding(), 0u);
         EXPECT_LT(b.base->discs_sliding(), b.base->discs_on_base());
     }
+    omp_set_num_threads(saved);
+}
+
+namespace {
+
+/// A boundary with a whole-system add_forces (the default ForceHook) that
+/// adds nothing: the step then applies the bases on one thread between
+/// barriers, as the boundaries that need it do.
+class WholeNoOp : public Boundary {
+public:
+    std::string_view name() const override { return "test-whole-no-op"; }
+    void add_forces(Simulation&) override {}
+};
+
+}  // namespace
+
+// The base law applied per thread to its own discs inside the step's
+// parallel region (ForceHook::by_disc_range), on one thread after phase B
+// (a whole boundary beside it) and phase by phase: the same state and base
+// tallies every step, for both base laws, at 1 to 3 threads.
+TEST(CoulombBase, PerThreadBaseRangesMatchTheWholePass) {
+    const int saved = omp_get_max_threads();
+    for (int law = 0; law < 2; ++law)
+        for (int threads = 1; threads <= 3; ++threads) {
+            omp_set_num_threads(threads);
+            Belt runs[3] = {many_discs(), many_discs(), many_discs()};
+            BasalBoundary* base[3];
+            for (int r = 0; r < 3; ++r) {
+                if (law == 1) runs[r].sim.boundaries[0] = std::make_unique<ConveyorTraction>(0, 0.1, 0.3, 1.0);
+                base[r] = static_cast<BasalBoundary*>(runs[r].sim.boundaries[0].get());
+            }
+            runs[0].sim.one_region_min_awake = 0;  // one region, per-thread ranges
+            runs[1].sim.one_region_min_awake = 0;  // one region, the base on one thread
+            runs[1].sim.boundaries.push_back(std::make_unique<WholeNoOp>());
+            runs[2].sim.one_region_min_awake = std::numeric_limits<std::size_t>::max();  // phase by phase
+            for (int s = 0; s < 200; ++s) {
+                for (Belt& b : runs) b.sim.step();
+                for (int r = 1; r < 3; ++r) {
+                    ASSERT_EQ(base[r]->total_traction(), base[0]->total_traction()) << law << " " << threads << " " << r;
+                    ASSERT_EQ(base[r]->discs_on_base(), base[0]->discs_on_base());
+                    ASSERT_EQ(base[r]->discs_sliding(), base[0]->discs_sliding());
+                }
+            }
+            for (int r = 1; r < 3; ++r) EXPECT_EQ(runs[r].sim.state_hash(), runs[0].sim.state_hash()) << law << " " << r;
+            EXPECT_GT(base[0]->discs_sliding(), 0u);
+            EXPECT_GT(base[0]->discs_on_base(), 4000u);
+        }
     omp_set_num_threads(saved);
 }
 

@@ -10,9 +10,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "orodem/analysis/wedge_profile.hpp"
+#include "orodem/boundary/basal_boundary.hpp"
 #include "orodem/io/checkpoint.hpp"
 #include "orodem/io/config.hpp"
 #include "orodem/setup/packing.hpp"
@@ -159,6 +161,41 @@ TEST(Sleep, CheckpointWithSleepingZonesContinuesBitForBit) {
         ASSERT_EQ(b.sim.state_hash(), a.sim.state_hash()) << "diverged by step " << a.sim.step_count;
     }
     EXPECT_GT(a.sim.rebuild_count(), r1);
+}
+
+// The wedge step in one parallel region, where each thread applies the base
+// law to its own gathered discs (Boundary::ForceHook::by_disc_range) and the
+// sleeping base discs' slots are skipped, against the phases one by one
+// (the law over every base disc on one thread), from the same state: the
+// same state, base traction and counts every step, at 2 and 3 threads.
+TEST(Sleep, BaseForcesPerThreadRangeMatchThePhasesOneByOne) {
+    const test::SerialOmp serial;
+    const Config c = plate_config(true);
+    WedgeSetup a = sleeping_plate(c), b = sleeping_plate(c);
+    ASSERT_EQ(b.sim.state_hash(), a.sim.state_hash());
+    ASSERT_GT(a.sim.sleeping_count(), 0u);
+    a.sim.one_region_min_awake = std::numeric_limits<std::size_t>::max();  // phases one by one
+    b.sim.one_region_min_awake = 0;                                        // one region
+    ASSERT_NE(a.base, nullptr);
+    ASSERT_NE(b.base, nullptr);
+    const std::uint64_t r0 = a.sim.rebuild_count();
+    std::size_t sleeping_on_base = 0;
+    for (int k = 0; k < 1000; ++k) {
+        omp_set_num_threads(2);
+        a.sim.step();
+        omp_set_num_threads(k % 2 ? 3 : 2);
+        b.sim.step();
+        ASSERT_EQ(b.sim.state_hash(), a.sim.state_hash()) << "diverged at step " << a.sim.step_count;
+        ASSERT_EQ(b.base->total_traction(), a.base->total_traction()) << "step " << a.sim.step_count;
+        ASSERT_EQ(b.base->discs_on_base(), a.base->discs_on_base()) << "step " << a.sim.step_count;
+        ASSERT_EQ(b.base->discs_sliding(), a.base->discs_sliding()) << "step " << a.sim.step_count;
+        if (k == 0)
+            for (const std::uint32_t i : b.sim.wall_discs(b.base->wall()))
+                sleeping_on_base += (b.sim.particles.flags[i] & kFlagAsleep) ? 1 : 0;
+    }
+    EXPECT_GT(a.sim.rebuild_count(), r0);  // rebuild steps (phase by phase in both) on the way
+    EXPECT_GT(b.base->discs_on_base(), 0u);
+    EXPECT_GT(sleeping_on_base, 0u);  // the ranges skipped sleeping base discs
 }
 
 TEST(Sleep, LazyDriftOfTheFarSleepersMatchesDriftingThemEveryStep) {

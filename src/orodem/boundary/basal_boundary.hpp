@@ -10,8 +10,17 @@
 // step's total traction and counts here, in slot order, so the outputs are
 // the same at any thread count. Those tallies are the boundary's checkpointed
 // state (the per-slot buffers are rewritten by every step).
+//
+// A disc's law reads and writes only that disc's state, so a base is a
+// ForceHook::by_disc_range boundary: in the step's parallel region each
+// thread applies the law to the base discs among its own gathered discs and
+// kicks them with no barrier between, and the tally follows the kick's
+// barrier (engine/boundary.hpp). The slots start each step cleared
+// (begin_forces), so those the ranges skip (the sleeping discs') read 0, as
+// when the law itself clears them.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -40,7 +49,36 @@ public:
     void save_state(ByteWriter& w) const override;
     void load_state(ByteReader& r) override;
 
+    ForceHook force_hook() const override { return ForceHook::by_disc_range; }
+    /// Sizes the slots for this step's base discs and clears them.
+    void begin_forces(Simulation& sim) override {
+        size_slots(sim.wall_discs(wall_).size());
+        std::fill(traction_.begin(), traction_.end(), 0.0);
+        std::fill(touching_.begin(), touching_.end(), static_cast<unsigned char>(0));
+        std::fill(sliding_slot_.begin(), sliding_slot_.end(), static_cast<unsigned char>(0));
+    }
+    /// The law for the base discs in disc slots [begin, end), on this thread.
+    void add_forces_range(Simulation& sim, std::size_t begin, std::size_t end) override {
+        const std::vector<std::uint32_t>& discs = sim.wall_discs(wall_);  // ascending
+        const auto c0 = std::lower_bound(discs.begin(), discs.end(), begin);
+        const auto c1 = std::lower_bound(c0, discs.end(), end);
+        apply_law(sim, static_cast<std::size_t>(c0 - discs.begin()), static_cast<std::size_t>(c1 - discs.begin()),
+                  false);
+    }
+    void end_forces(Simulation&) override { tally(); }
+    /// The whole step: the slots cleared, the law for every base disc (in
+    /// parallel when there are many), the totals.
+    void add_forces(Simulation& sim) override {
+        begin_forces(sim);
+        apply_law(sim, 0, sim.wall_discs(wall_).size(), true);
+        tally();
+    }
+
 protected:
+    /// The law over wall-disc slots [c0, c1) (for_each_base_contact);
+    /// parallel: split them among threads when there are many.
+    virtual void apply_law(Simulation& sim, std::size_t c0, std::size_t c1, bool parallel) = 0;
+
     /// Sizes the per-slot buffers for n discs (no allocation once sized).
     void size_slots(std::size_t n);
     /// One disc slot's result this step (slot c of wall_discs, not the disc slot).
@@ -51,32 +89,28 @@ protected:
     }
     /// The step's totals from the slots, in slot order.
     void tally();
-    /// The per-step loop both laws share: over the discs with a candidate
-    /// contact with the base (a few per cent of them; Simulation::wall_discs,
-    /// in slot order, in parallel when there are many), each slot first
-    /// cleared; for every disc with a finite mass, law(c, i, k, N) for its
-    /// contact k with the base, N the (smooth) base's normal force on it [N],
-    /// which the law records with set_slot when N > 0. Then the totals.
+    /// The per-step loop both laws share, over the discs with a candidate
+    /// contact with the base (a few per cent of them; Simulation::wall_discs)
+    /// in slots [c0, c1) (cleared by begin_forces), in parallel when asked and
+    /// there are many: for every disc with a finite mass, law(c, i, k, N) for
+    /// its contact k with the base, N the (smooth) base's normal force on it
+    /// [N], which the law records with set_slot when N > 0.
     template <class Law>
-    void for_each_base_contact(Simulation& sim, Law&& law) {
+    void for_each_base_contact(Simulation& sim, std::size_t c0, std::size_t c1, bool parallel, Law&& law) {
         const ParticleStore& p = sim.particles;
         const WallContactStore& ws = sim.wall_contacts;
         const Wall& w = sim.walls[wall_];
         const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
         const std::vector<std::uint32_t>& discs = sim.wall_discs(wall_);
-        const std::size_t n = discs.size();
-        size_slots(n);
-        const long long nn = static_cast<long long>(n);
-#pragma omp parallel for schedule(static) if(nn >= kParallelMin)
-        for (long long ii = 0; ii < nn; ++ii) {
+        const long long cb = static_cast<long long>(c0), ce = static_cast<long long>(c1);
+#pragma omp parallel for schedule(static) if(parallel && ce - cb >= kParallelMin)
+        for (long long ii = cb; ii < ce; ++ii) {
             const std::size_t c = static_cast<std::size_t>(ii);
             const std::size_t i = discs[c];
-            set_slot(c, 0.0, false, false);
             if (p.inv_mass[i] == 0.0) continue;  // fixed and sleeping discs are left as they are
             for (std::uint32_t k = ws.begin[i]; k < ws.begin[i + 1]; ++k)
                 if (ws.wall[k] == wall_) law(c, i, k, ws.f[k].x * -u.y + ws.f[k].y * u.x);
         }
-        tally();
     }
 
     std::size_t wall_;

@@ -42,9 +42,11 @@ public:
         : BasalBoundary(wall, v_belt, mu_b), gain_(gain), drag_gain_(drag_gain) {}
 
     std::string_view name() const override { return "conveyor-traction"; }
+
+protected:
     /// Writes the traction into ParticleStore::force; total_traction() is the
     /// capped part and the drag together, discs_sliding() those at the cap.
-    void add_forces(Simulation& sim) override;
+    void apply_law(Simulation& sim, std::size_t c0, std::size_t c1, bool parallel) override;
 
 private:
     double gain_;       // g_b [-]

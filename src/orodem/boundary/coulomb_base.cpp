@@ -7,7 +7,7 @@
 
 namespace orodem {
 
-void CoulombBase::add_forces(Simulation& sim) {
+void CoulombBase::apply_law(Simulation& sim, std::size_t c0, std::size_t c1, bool parallel) {
     ParticleStore& p = sim.particles;
     WallContactStore& ws = sim.wall_contacts;
     const Wall& w = sim.walls[wall_];
@@ -15,7 +15,7 @@ void CoulombBase::add_forces(Simulation& sim) {
     const double k_s = sim.params.law.k_s;                         // [N/m]
     const double damp = 2.0 * kBaseDampingRatio * std::sqrt(k_s);  // γ_s / sqrt(m_i) [sqrt(kg)/s]
     const double dt = sim.params.dt;
-    for_each_base_contact(sim, [&](std::size_t c, std::size_t i, std::uint32_t k, double normal) {
+    for_each_base_contact(sim, c0, c1, parallel, [&](std::size_t c, std::size_t i, std::uint32_t k, double normal) {
         if (normal <= 0.0) {
             ws.xi[k] = {};  // not pressed on the base: no grip
             return;

@@ -46,7 +46,9 @@ public:
     CoulombBase(std::size_t wall, double v_belt, double mu_b) : BasalBoundary(wall, v_belt, mu_b) {}
 
     std::string_view name() const override { return "coulomb-base"; }
-    void add_forces(Simulation& sim) override;
+
+protected:
+    void apply_law(Simulation& sim, std::size_t c0, std::size_t c1, bool parallel) override;
 };
 
 /// Damping ratio of the base spring (critical) [-].

@@ -14,6 +14,7 @@ class FixedRetroside : public Boundary {
 public:
     explicit FixedRetroside(std::size_t wall) : wall_(wall) {}
     std::string_view name() const override { return "fixed-retroside"; }
+    ForceHook force_hook() const override { return ForceHook::none; }
     void after_step(Simulation& sim) override;
     std::size_t fixed_count() const { return fixed_; }
     void save_state(ByteWriter& w) const override;

@@ -51,6 +51,7 @@ public:
     ServoWalls(std::vector<BoxSide> sides, double alpha, double integral_steps = 100.0);
 
     std::string_view name() const override { return "servo-walls"; }
+    ForceHook force_hook() const override { return ForceHook::none; }
     void after_step(Simulation& sim) override;
     void save_state(ByteWriter& w) const override;
     void load_state(ByteReader& r) override;

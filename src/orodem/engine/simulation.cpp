@@ -260,11 +260,6 @@ void Simulation::compute_forces() {
 
 namespace {
 
-/// Awake discs from which a wedge step without a rebuild runs in one parallel
-/// region (step()): the intermediate wedge has 3,000-6,000 awake, the demo
-/// wedges 500-1,700. Results do not depend on it.
-constexpr std::uint32_t kOneRegionMinAwake = 2048;
-
 /// The first half kick and the drift of disc i; returns |x - x_ref|².
 inline double kick_drift_disc(ParticleStore& p, const std::vector<Vec2>& x_ref, std::size_t i, double dt,
                               double half) {
@@ -365,11 +360,16 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
     // move_walls(), the hooks, pair_forces(false), gather_forces(false),
     // kick(), so the same results, with one fork a step instead of four:
     // about 1.35 times faster on 2 threads for a 10,000-disc wedge
-    // (docs/benchmarks.md; step() calls it from kOneRegionMinAwake awake
+    // (docs/benchmarks.md; step() calls it from one_region_min_awake awake
     // discs on). The hooks run on one thread between barriers (their loops
     // cover the few discs on a base; a nested region inside a hook runs on
-    // one thread). A rebuild step ends the region after the after_drift
-    // hooks and step() finishes it phase by phase, as before.
+    // one thread), except the add_forces of the by_disc_range boundaries
+    // (the bases): when no boundary needs a whole add_forces, each thread
+    // applies them to its own gathered discs and kicks those with no barrier
+    // between, and their totals follow the kick's barrier, one barrier and
+    // one single fewer (the same operations on each disc, the same tallies,
+    // so the same results). A rebuild step ends the region after the
+    // after_drift hooks and step() finishes it phase by phase, as before.
     ParticleStore& p = particles;
     const double dt = params.dt;
     const double half = 0.5 * dt;
@@ -382,6 +382,8 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
     const std::size_t disc0 = awake_begin_, nawake = awake_end_ - awake_begin_;
     double max_d2 = max_disp2_;
     bool rebuild = false;
+    bool by_range = true;  // no boundary needs a whole add_forces on one thread
+    for (const auto& bd : boundaries) by_range = by_range && bd->force_hook() != Boundary::ForceHook::whole;
 #pragma omp parallel
     {
 #pragma omp for schedule(static) reduction(max : max_d2)
@@ -394,6 +396,9 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
             const double wall_move = move_walls();
             for (auto& b : boundaries) b->after_drift(*this);
             rebuild = needs_rebuild(wall_move);
+            if (by_range && !rebuild)
+                for (auto& bd : boundaries)
+                    if (bd->force_hook() == Boundary::ForceHook::by_disc_range) bd->begin_forces(*this);
             stamp[1] = omp_get_wtime();
         }  // (a barrier: every thread reads the same decision)
         if (!rebuild) {
@@ -404,12 +409,25 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
             stamp[2] = omp_get_wtime();
             const auto [b, e] = thread_range(nawake, 8);
             if (b < e) gather_range(gd, disc0 + b, disc0 + e);
+            if (by_range) {
+                // This thread's discs: their base forces (the master's clock
+                // reads time its own share), then the kick below.
+#pragma omp master
+                stamp[3] = omp_get_wtime();
+                if (b < e)
+                    for (auto& bd : boundaries)
+                        if (bd->force_hook() == Boundary::ForceHook::by_disc_range)
+                            bd->add_forces_range(*this, disc0 + b, disc0 + e);
+#pragma omp master
+                stamp[4] = omp_get_wtime();
+            } else {
 #pragma omp barrier
 #pragma omp single
-            {
-                stamp[3] = omp_get_wtime();
-                for (auto& bd : boundaries) bd->add_forces(*this);
-                stamp[4] = omp_get_wtime();
+                {
+                    stamp[3] = omp_get_wtime();
+                    for (auto& bd : boundaries) bd->add_forces(*this);
+                    stamp[4] = omp_get_wtime();
+                }
             }
             // The second half kick over the same discs as this thread's
             // gather (sleeping discs have inv_mass = inv_inertia = 0).
@@ -421,6 +439,9 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
 #pragma omp master
             {
                 stamp[5] = omp_get_wtime();
+                if (by_range)
+                    for (auto& bd : boundaries)
+                        if (bd->force_hook() == Boundary::ForceHook::by_disc_range) bd->end_forces(*this);
                 for (auto& bd : boundaries) bd->after_step(*this);
             }
         }
@@ -489,13 +510,13 @@ void Simulation::step() {
             lap(times_.gather);
         }
     } else {
-        // From kOneRegionMinAwake awake discs on, a step without a rebuild
+        // From one_region_min_awake awake discs on, a step without a rebuild
         // runs in one parallel region; below, the phases run one by one (the
         // barriers would cost more than the work: a demo-size wedge with about
         // 1,000 awake discs ran 12% slower in one region).
         double stamp[6] = {};
         bool drifted = false, done = false;
-        if (awake_end_ - awake_begin_ >= kOneRegionMinAwake) {
+        if (awake_end_ - awake_begin_ >= one_region_min_awake) {
             done = boundary_step_in_one_region(stamp);
             drifted = true;
             lap_to(times_.integrate, stamp[0]);

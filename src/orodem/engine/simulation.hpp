@@ -17,7 +17,8 @@
 // region, each disc kicked right after its force is summed (the same
 // operations, so the same results). With boundaries a step that needs no
 // rebuild also runs in one parallel region, the boundaries' hooks on one
-// thread between barriers. No allocation happens in a step once the
+// thread between barriers, except the bases' forces, which each thread
+// applies to its own discs (Boundary::ForceHook::by_disc_range). No allocation happens in a step once the
 // stores have reached their size.
 #pragma once
 
@@ -90,6 +91,11 @@ public:
 
     std::uint64_t step_count = 0;  // steps taken
     double time = 0.0;             // simulated time [s]
+    /// Awake discs from which a wedge step without a rebuild runs in one
+    /// parallel region (step()): the intermediate wedge has 3,000-6,000
+    /// awake, the demo wedges 500-1,700. Results do not depend on it (tests
+    /// set it to compare the two paths).
+    std::size_t one_region_min_awake = 2048;
 
     /// Builds the bond topology from cluster ids, the first pair list and the
     /// forces at t = 0. Call once after particles, walls and params are set.
@@ -180,7 +186,9 @@ private:
     bool step_in_one_region(double wall_move);  // kick_drift + (no rebuild) A, B, kick; false: rebuild first
     // With boundaries: kick_drift, walls, after_drift, and (no rebuild) A, B,
     // add_forces, kick, after_step in one parallel region, the hooks on one
-    // thread; false: a rebuild is due (drift, walls and after_drift done).
+    // thread (the bases' add_forces per thread over its own discs when no
+    // boundary needs a whole one: Boundary::ForceHook); false: a rebuild is
+    // due (drift, walls and after_drift done).
     // stamp: omp_get_wtime() at the ends of the drift, the after_drift hooks,
     // phase A, phase B, add_forces and the kick (phase timers).
     bool boundary_step_in_one_region(double (&stamp)[6]);

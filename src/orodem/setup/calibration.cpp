@@ -65,6 +65,7 @@ class TractionMeter : public Boundary {
 public:
     explicit TractionMeter(const BasalBoundary& c) : conveyor_(c) {}
     std::string_view name() const override { return "traction-meter"; }
+    ForceHook force_hook() const override { return ForceHook::none; }
     void after_step(Simulation&) override {
         sum_ += conveyor_.total_traction();
         ++n_;

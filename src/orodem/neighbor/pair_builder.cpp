@@ -44,6 +44,19 @@ void permute_column(std::vector<T>& col, const std::vector<std::uint32_t>& perm,
 
 }  // namespace
 
+void HistoryTable::reset(std::size_t n) {
+    std::size_t size = 16;
+    int bits = 4;
+    while (size < 2 * n) {
+        size <<= 1;
+        ++bits;
+    }
+    keys_.assign(size, kEmpty);  // keeps the capacity: no allocation once grown
+    xi_.resize(size);
+    mask_ = size - 1;
+    shift_ = 64 - bits;
+}
+
 void PairBuilder::sort_by_cell(ParticleStore& p, const Settings& s) {
     const std::size_t n = p.size();
     if (s.periodic_x) {
@@ -246,24 +259,20 @@ void PairBuilder::rebuild(ParticleStore& p, const BondTopology& bonds,
                           const std::vector<Wall>& walls, const Settings& s, ContactStore& cs,
                           WallContactStore& ws) {
     ++rebuilds_;
-    // (1) Save history by key. Wall keys and pair keys live in separate tables.
+    // (1) Save history by key. Wall keys and pair keys go through the table
+    // in turn (a pair's key and a wall contact's may coincide).
     auto save = [&](const auto& keys, const auto& xis, std::size_t count) {
-        old_hist_.clear();
+        std::size_t touched = 0;
+        for (std::size_t k = 0; k < count; ++k) touched += (xis[k].x != 0.0 || xis[k].y != 0.0) ? 1 : 0;
+        old_hist_.reset(touched);
         for (std::size_t k = 0; k < count; ++k)
-            if (xis[k].x != 0.0 || xis[k].y != 0.0) old_hist_.emplace_back(keys[k], xis[k]);
-        std::sort(old_hist_.begin(), old_hist_.end(),
-                  [](const auto& a, const auto& b) { return a.first < b.first; });
+            if (xis[k].x != 0.0 || xis[k].y != 0.0) old_hist_.insert(keys[k], xis[k]);
     };
     auto restore = [&](const auto& keys, auto& xis, std::size_t count) {
         const long long m = static_cast<long long>(count);
 #pragma omp parallel for schedule(static) if(m >= kParallelMin)
-        for (long long k = 0; k < m; ++k) {
-            const std::uint64_t key = keys[static_cast<std::size_t>(k)];
-            auto it = std::lower_bound(old_hist_.begin(), old_hist_.end(), key,
-                                       [](const auto& e, std::uint64_t v) { return e.first < v; });
-            xis[static_cast<std::size_t>(k)] =
-                (it != old_hist_.end() && it->first == key) ? it->second : Vec2{};
-        }
+        for (long long k = 0; k < m; ++k)
+            xis[static_cast<std::size_t>(k)] = old_hist_.find(keys[static_cast<std::size_t>(k)]);
     };
 
     save(cs.key, cs.xi, cs.size());

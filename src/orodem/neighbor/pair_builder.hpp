@@ -9,8 +9,11 @@
 // stencil (same cell with j > i, then cells E, NW, N, NE) plus the cluster
 // bonds owned by their lower slot, count → exclusive scan → fill, so the pair
 // order never depends on the thread split, (5) does the same for disc-wall
-// candidates, and (6) moves ξ to the new pair slots by binary search on the
-// sorted old keys. Pairs of one cluster are bonds and never enter detection.
+// candidates, and (6) moves ξ to the new pair slots by looking their keys up
+// in a hash table of the old pairs' non-zero ξ (HistoryTable: each key is
+// unique, so every lookup finds what any exact map would, and the result
+// depends on no order). Pairs of one cluster are bonds and never enter
+// detection.
 //
 // A rebuild is needed when the largest disc displacement since the last one
 // plus the largest wall displacement exceeds skin/2: then no pair can have
@@ -25,6 +28,40 @@
 #include "orodem/state/particles.hpp"
 
 namespace orodem {
+
+/// ξ by pair or wall key: open addressing with linear probing in a table of a
+/// power-of-two size at least twice the entries, kept between rebuilds (no
+/// allocation once grown). No key is ~0 (pair_key(a, b) has a < b; wall_key
+/// has a 32-bit id), which marks an empty place.
+class HistoryTable {
+public:
+    /// Empties the table, sized for n entries.
+    void reset(std::size_t n);
+    /// Adds a key not yet in the table.
+    void insert(std::uint64_t key, Vec2 xi) {
+        std::size_t h = place(key);
+        while (keys_[h] != kEmpty) h = (h + 1) & mask_;
+        keys_[h] = key;
+        xi_[h] = xi;
+    }
+    /// ξ of key, {} when it is not in the table.
+    Vec2 find(std::uint64_t key) const {
+        for (std::size_t h = place(key);; h = (h + 1) & mask_) {
+            if (keys_[h] == key) return xi_[h];
+            if (keys_[h] == kEmpty) return {};
+        }
+    }
+
+private:
+    static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+    std::size_t place(std::uint64_t key) const {
+        return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);  // Fibonacci hashing
+    }
+    std::vector<std::uint64_t> keys_;
+    std::vector<Vec2> xi_;
+    std::size_t mask_ = 0;
+    int shift_ = 64;
+};
 
 struct GridInfo {
     double x0 = 0, y0 = 0;     // lower-left corner [m]
@@ -70,7 +107,7 @@ private:
     std::vector<std::uint32_t> perm_;        // new slot -> old slot
     std::vector<unsigned char> scratch_;     // column permutation buffer
     std::vector<std::uint32_t> count_;       // per-slot pair counts
-    std::vector<std::pair<std::uint64_t, Vec2>> old_hist_;  // sorted by key
+    HistoryTable old_hist_;                  // the old pairs' (then walls') non-zero ξ by key
     std::vector<Vec2> x_ref_;
     std::uint64_t rebuilds_ = 0;
 };

@@ -372,3 +372,41 @@ TEST(Neighbor, NarrowPeriodicBoxFewCells) {
     }
     EXPECT_TRUE(nx_seen.count(2) && nx_seen.count(3)) << "the widths should give 2 and 3 cells";
 }
+
+// HistoryTable (the rebuild's ξ by key) against std::map: pair keys of
+// random ids and wall keys, about half of them stored, sized as the rebuild
+// sizes it (at 8,192 and 16,384 entries exactly half full, its highest load,
+// so probes run past collisions and wrap); every stored key gives back its ξ,
+// every other key {}; a reset empties it, smaller or larger.
+TEST(Neighbor, HistoryTableFindsWhatAMapFinds) {
+    Rng rng(7);
+    HistoryTable table;
+    for (const std::size_t n : {std::size_t{8192}, std::size_t{300}, std::size_t{16384}}) {
+        std::map<std::uint64_t, Vec2> stored;
+        std::vector<std::uint64_t> absent;
+        while (stored.size() < n) {
+            const auto a = static_cast<std::uint32_t>(rng.next_u64() % 100000);
+            const auto b = static_cast<std::uint32_t>(rng.next_u64() % 100000);
+            if (a == b) continue;
+            const std::uint64_t key = (rng.next_u64() % 4 == 0) ? wall_key(a, b % 5) : pair_key(a, b);
+            if (rng.next_u64() % 2) {
+                stored.emplace(key, Vec2{rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)});
+            } else {
+                absent.push_back(key);
+            }
+        }
+        table.reset(stored.size());
+        for (const auto& [key, xi] : stored) table.insert(key, xi);
+        for (const auto& [key, xi] : stored) {
+            const Vec2 got = table.find(key);
+            ASSERT_EQ(got.x, xi.x) << key;
+            ASSERT_EQ(got.y, xi.y) << key;
+        }
+        for (const std::uint64_t key : absent) {
+            if (stored.count(key)) continue;
+            const Vec2 got = table.find(key);
+            ASSERT_EQ(got.x, 0.0) << key;
+            ASSERT_EQ(got.y, 0.0) << key;
+        }
+    }
+}

@@ -563,11 +563,13 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
         // run's own others (section_push). A stand-in measure gives alpha 7 at S = 1.5 and 2.5: each
         // run's stage-1 mean becomes (6 (5 ± 0.1) + 2 * 7) / 8 = 5.5 ± 0.075 (s.e. 0.075, printed 0.07),
         // and the push rows stay.
-        // Its `taper` gives Dahlen's critical alpha 4.25 deg for every group: the
-        // critical-taper table, and with --taper-plot its picture (matplotlib).
+        // Its `taper` gives Dahlen's critical alpha 4.25 deg (compressive) and 21.5 deg
+        // (extensional) for every group: the critical-taper table with the stable field
+        // between them, and with --taper-plot its picture (matplotlib).
         write(root / "fake-orodem",
               "#!/bin/sh\nif [ \"$1\" = measure ]; then printf 'S,alpha_deg\\n1.5,7\\n2.5,7\\n'; exit 0; fi\n"
-              "if [ \"$1\" = taper ]; then printf 'critical taper (compressive branch): alpha = 4.25 deg\\n'; exit 0; fi\n"
+              "if [ \"$1\" = taper ]; then printf 'critical taper (compressive branch): alpha = 4.25 deg\\n"
+              "critical taper (extensional branch): alpha = 21.5 deg\\n'; exit 0; fi\n"
               "exit 1\n");
         fs::permissions(root / "fake-orodem", fs::perms::owner_all);
         std::string again;
@@ -581,7 +583,7 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
         EXPECT_HAS(again, "mu_bp 0.1: 5.50 ± 0.07 (2 runs); mu_bp 0.3: 5.50 ± 0.07 (2 runs)");
         EXPECT_HAS(again, "| exp1_mubp0.1 | 0.50 ± 0.10 (2 runs) | 0.800 | 1.20 | 0.42 |");
         EXPECT_HAS(again, "| exp1_mubp0.1 | 0.3 | 30 / 26 deg |");
-        EXPECT_HAS(again, "| 4.25 | 4.25 |");
+        EXPECT_HAS(again, "| 4.25 (stable to 21.50) | 4.25 (stable to 21.50) |");
         EXPECT_HAS(again, "![measured prowedge taper against critical taper, intermediate size](" +
                               (root / "taper-mid.png").string() + ")");
         EXPECT_GT(fs::file_size(root / "taper-mid.png"), 1000u);
@@ -724,7 +726,8 @@ TEST_F(PlotRender, CheckTaperFitsTheSnapshotsSurfaceAndJudgesTheSeriesAlpha) {
         if (x >= -80.0 && x <= 0.0 && r >= 0.2 && r <= 0.8) fx.push_back(x), fy.push_back(top(x));
     }
     double mx = 0, my = 0;
-    for (std::size_t k = 0; k < fx.size(); ++k) mx += fx[k] / fx.size(), my += fy[k] / fx.size();
+    const double n = static_cast<double>(fx.size());
+    for (std::size_t k = 0; k < fx.size(); ++k) mx += fx[k] / n, my += fy[k] / n;
     double sxy = 0, sxx = 0;
     for (std::size_t k = 0; k < fx.size(); ++k) sxy += (fx[k] - mx) * (fy[k] - my), sxx += (fx[k] - mx) * (fx[k] - mx);
     const double both = std::atan(sxy / sxx) * 180.0 / M_PI;

@@ -662,6 +662,17 @@ TEST_F(PlotRender, ValidateFindingsArchivesRunsAsRecordsThatTheVerdictsRead) {
     EXPECT_HAS(out, "mu_bp 0.1: 5.50 ± 0.07 (2 runs)");
     EXPECT_HAS(out, "| exp1_mubp0.1 | 0.50 ± 0.10 (2 runs) | 0.800 | 1.20 | 0.42 |");
     EXPECT_HAS(out, "h0 of it: mu_bp 0.1: 0.22 ± 0.00 (2 runs)");
+    // On a fresh clone (the run directories gone, the records there), `--make`
+    // makes nothing again: the stand-in orodem fails any `run`, so a run started
+    // would print "exit 1" and leave its directory.
+    ASSERT_EQ(run("ORODEM=" + quote((root / "fake-orodem").string()) + " " + script + " --make " +
+                      quote((root / "m.toml").string()) + " --size mid",
+                  &out),
+              0)
+        << out;
+    EXPECT_HAS(out, "mid/exp1_mubp0.1/seed2: archived in");
+    EXPECT_EQ(out.find("exit 1"), std::string::npos) << out;
+    EXPECT_FALSE(fs::exists(root / "runs" / "mid")) << out;
 }
 
 TEST_F(PlotRender, CheckTaperFitsTheSnapshotsSurfaceAndJudgesTheSeriesAlpha) {

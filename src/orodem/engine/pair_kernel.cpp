@@ -6,14 +6,17 @@
 // sliding and three law variants; the LAMMPS reference and determinism tests
 // would catch a drift too).
 //
-// Cost model (30,000-disc pile, Zen 4, docs/benchmarks.md): about 83
-// instructions per pair, of which two thirds load the two discs' columns
-// into lanes and store the results; the arithmetic is a third, and the
-// divider (sqrt, divisions) is the unit a block waits on. Hence four lanes
-// (wider vectors only add shuffles), contiguous loads and stores of the pair
-// columns, the sliding branch skipped when no lane of a block slides (about
-// nine blocks in ten), and the pair dashpots (m_eff) computed when the pairs
-// or the masses change, not every step (pair_dashpots).
+// Cost model (30,000-disc pile, docs/benchmarks.md "Profile"): phase A is
+// bound by its instruction count, neither by memory nor by the latency of a
+// block's chain (two passes per chunk and two interleaved blocks gained
+// nothing). About 56 instructions a pair (61 in the AVX2 version): a fifth
+// scalar index work, two fifths loads, shuffles and stores, a third
+// arithmetic and selects. Hence four lanes (wider vectors and hardware
+// gathers only add work), contiguous loads and stores of the pair columns,
+// the disc indices as byte offsets that one register addresses both column
+// widths with (opaque), the sliding branch skipped when no lane of a block
+// slides (about nine blocks in ten), and the pair dashpots (m_eff) computed
+// when the pairs or the masses change, not every step (pair_dashpots).
 #include "orodem/engine/pair_kernel.hpp"
 
 #include <string_view>
@@ -59,22 +62,49 @@ template <class Index>
     ys = odd(lo, hi);
 }
 
+/// `v`, opaque to the optimiser. A disc's byte offset into a double column
+/// (index × 8) also addresses its Vec2 (× 2 in the address). Made
+/// opaque, one register per index serves both widths; otherwise the compiler
+/// keeps the index and the index × 16 and spills them (phase A about 6%
+/// faster, 12% fewer instructions; docs/benchmarks.md).
+[[gnu::always_inline]] inline std::size_t opaque(std::size_t v) {
+    asm("" : "+r"(v));
+    return v;
+}
+
+/// The double at byte offset `off` of column `a`.
+[[gnu::always_inline]] inline double at_off(const double* a, std::size_t off) {
+    double v;
+    __builtin_memcpy(&v, reinterpret_cast<const char*>(a) + off, sizeof v);
+    return v;
+}
+
+/// Lanes l of {x, y} columns from a Vec2 array at four byte offsets of a
+/// double column (see opaque).
+[[gnu::always_inline]] inline void gather_vec2_off(const Vec2* a, const std::size_t* off, vd& xs, vd& ys) {
+    const char* base = reinterpret_cast<const char*>(a);
+    const vd lo = cat(simd::load<v2d>(base + 2 * off[0]), simd::load<v2d>(base + 2 * off[1]));
+    const vd hi = cat(simd::load<v2d>(base + 2 * off[2]), simd::load<v2d>(base + 2 * off[3]));
+    xs = even(lo, hi);
+    ys = odd(lo, hi);
+}
+
 /// Loads a block; `K` are the pair indices of the lanes.
 [[gnu::always_inline]] inline Block load_block(const PairKernelData& d, const std::size_t* K, bool contiguous) {
-    std::uint32_t I[kLanes], J[kLanes];
+    std::size_t I[kLanes], J[kLanes];  // the discs' byte offsets into the double columns
     for (std::size_t l = 0; l < kLanes; ++l) {
-        I[l] = d.i[K[l]];
-        J[l] = d.j[K[l]];
+        I[l] = opaque(std::size_t{d.i[K[l]]} * sizeof(double));
+        J[l] = opaque(std::size_t{d.j[K[l]]} * sizeof(double));
     }
     Block b;
-    gather_vec2(d.x, I, b.xix, b.xiy);
-    gather_vec2(d.x, J, b.xjx, b.xjy);
-    gather_vec2(d.v, I, b.vix, b.viy);
-    gather_vec2(d.v, J, b.vjx, b.vjy);
-    b.ri = lanes([&](std::size_t l) { return d.radius[I[l]]; });
-    b.rj = lanes([&](std::size_t l) { return d.radius[J[l]]; });
-    b.wi = lanes([&](std::size_t l) { return d.omega[I[l]]; });
-    b.wj = lanes([&](std::size_t l) { return d.omega[J[l]]; });
+    gather_vec2_off(d.x, I, b.xix, b.xiy);
+    gather_vec2_off(d.x, J, b.xjx, b.xjy);
+    gather_vec2_off(d.v, I, b.vix, b.viy);
+    gather_vec2_off(d.v, J, b.vjx, b.vjy);
+    b.ri = lanes([&](std::size_t l) { return at_off(d.radius, I[l]); });
+    b.rj = lanes([&](std::size_t l) { return at_off(d.radius, J[l]); });
+    b.wi = lanes([&](std::size_t l) { return at_off(d.omega, I[l]); });
+    b.wj = lanes([&](std::size_t l) { return at_off(d.omega, J[l]); });
     // Periodic images and bonds are rare in a block (all four bytes zero): then
     // skip the byte-to-double conversions.
     std::uint32_t shift4 = 1, bonded4 = 1;

@@ -53,19 +53,10 @@ struct Out {
 [[gnu::always_inline]] inline vd odd(vd a, vd b) { return __builtin_shufflevector(a, b, 1, 3, 5, 7); }
 [[gnu::always_inline]] inline bool any(vm m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
 
-/// Lanes l of {x, y} columns from a Vec2 array at four indices.
-template <class Index>
-[[gnu::always_inline]] inline void gather_vec2(const Vec2* a, const Index* idx, vd& xs, vd& ys) {
-    const vd lo = cat(simd::load<v2d>(a + idx[0]), simd::load<v2d>(a + idx[1]));
-    const vd hi = cat(simd::load<v2d>(a + idx[2]), simd::load<v2d>(a + idx[3]));
-    xs = even(lo, hi);
-    ys = odd(lo, hi);
-}
-
 /// `v`, opaque to the optimiser. A disc's byte offset into a double column
 /// (index × 8) also addresses its Vec2 (× 2 in the address). Made
 /// opaque, one register per index serves both widths; otherwise the compiler
-/// keeps the index and the index × 16 and spills them (phase A about 6%
+/// keeps the index and the index × 16 and spills them (phase A about 4%
 /// faster, 12% fewer instructions; docs/benchmarks.md).
 [[gnu::always_inline]] inline std::size_t opaque(std::size_t v) {
     asm("" : "+r"(v));
@@ -121,7 +112,9 @@ template <class Index>
         b.gamma_n = simd::load<vd>(d.gamma_n + K[0]);
         b.gamma_s = simd::load<vd>(d.gamma_s + K[0]);
     } else {
-        gather_vec2(d.xi, K, b.xi_x, b.xi_y);
+        std::size_t KO[kLanes];  // the pairs' byte offsets into a double column
+        for (std::size_t l = 0; l < kLanes; ++l) KO[l] = K[l] * sizeof(double);
+        gather_vec2_off(d.xi, KO, b.xi_x, b.xi_y);
         b.gamma_n = lanes([&](std::size_t l) { return d.gamma_n[K[l]]; });
         b.gamma_s = lanes([&](std::size_t l) { return d.gamma_s[K[l]]; });
     }

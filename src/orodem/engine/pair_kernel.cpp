@@ -13,10 +13,10 @@
 // scalar index work, two fifths loads, shuffles and stores, a third
 // arithmetic and selects. Hence four lanes (wider vectors and hardware
 // gathers only add work), contiguous loads and stores of the pair columns,
-// the disc indices as byte offsets that one register addresses both column
-// widths with (opaque), the sliding branch skipped when no lane of a block
-// slides (about nine blocks in ten), and the pair dashpots (m_eff) computed
-// when the pairs or the masses change, not every step (pair_dashpots).
+// each disc index held as one byte offset that addresses both column widths
+// (opaque), the sliding branch skipped when no lane of a block slides (about
+// nine blocks in ten), and the pair dashpots (m_eff) computed when the pairs
+// or the masses change, not every step (pair_dashpots).
 #include "orodem/engine/pair_kernel.hpp"
 
 #include <string_view>

@@ -755,6 +755,17 @@ TEST_F(PlotRender, CheckTaperFitsTheSnapshotsSurfaceAndJudgesTheSeriesAlpha) {
     EXPECT_GT(15.0 - both, 1.0);
 }
 
+/// A stand-in orodem for scripts/quasi-static-check in `root`: `check`
+/// prints a config's derived values, `measure RUN` prints RUN/measured.csv.
+static void write_quasi_static_orodem(const fs::path& root) {
+    write(root / "fake-orodem",
+          "#!/bin/sh\n"
+          "if [ \"$1\" = check ]; then printf 'v = 0.05\\nsafety = 0.1\\ndt = 0.0003\\ninertial number I = "
+          "0.0004\\n'; exit 0; fi\n"
+          "if [ \"$1\" = measure ]; then cat \"$2/measured.csv\"; exit 0; fi\nexit 1\n");
+    fs::permissions(root / "fake-orodem", fs::perms::owner_all);
+}
+
 TEST_F(PlotRender, QuasiStaticCheckPairsEachArmWithItsReferenceSeedBySeed) {
     // Arms v and v-nosleep (the sleeping zones off), measured by a stand-in
     // orodem: alpha of v is 5, 7, 9 for seeds 1-3 and 20 for a seed 4 that the
@@ -765,12 +776,7 @@ TEST_F(PlotRender, QuasiStaticCheckPairsEachArmWithItsReferenceSeedBySeed) {
     // 0.17: the shift, with its sign, at 5 s.e. Beta and H are equal: 0 ± 0.
     const fs::path root = work_ / "qsc";
     fs::create_directories(root);
-    write(root / "fake-orodem",
-          "#!/bin/sh\n"
-          "if [ \"$1\" = check ]; then printf 'v = 0.05\\nsafety = 0.1\\ndt = 0.0003\\ninertial number I = "
-          "0.0004\\n'; exit 0; fi\n"
-          "if [ \"$1\" = measure ]; then cat \"$2/measured.csv\"; exit 0; fi\nexit 1\n");
-    fs::permissions(root / "fake-orodem", fs::perms::owner_all);
+    write_quasi_static_orodem(root);
     auto make = [&](const std::string& arm, int seed, double alpha) {
         const fs::path dir = root / "out" / arm / ("seed" + std::to_string(seed));
         fs::create_directories(dir);
@@ -824,6 +830,36 @@ TEST_F(PlotRender, QuasiStaticCheckPairsEachArmWithItsReferenceSeedBySeed) {
     EXPECT_HAS(out, "alpha undecided (|Δ| 20.25, 2 s.e. 6.73, margin 25 deg; seeds per arm to settle: 9)");
     EXPECT_NE(run(base + " --margins 2,0,0.1", &out), 0);
     EXPECT_HAS(out, "--margins: '2,0,0.1' is not three positive numbers");
+}
+
+TEST_F(PlotRender, QuasiStaticCheckTakesAFindingsRecordFromItsSeries) {
+    // A findings record (record.toml, series.csv, no snapshots) stands in
+    // for a run of the v arm: its measures come from its own series.csv
+    // (alpha over S >= 1: mean of 4 and 6), not from orodem measure, which
+    // the stand-in orodem fails; a run with snapshots is still measured.
+    const fs::path root = work_ / "qsc-record";
+    fs::create_directories(root);
+    write_quasi_static_orodem(root);
+    const fs::path rec = root / "out" / "v" / "seed1";
+    fs::create_directories(rec);
+    write(rec / "log.txt", "finished: S = 3.000\n");
+    write(rec / "record.toml", "# archived\n");
+    write(rec / "series.csv", "S,alpha_deg,beta_deg,H_over_h0,trailing_wall_push\n0.5,30,30,0.2,1\n1,4,8,0.7,1\n"
+                              "3,6,10,0.9,2e6\n");
+    const fs::path run2 = root / "out" / "v" / "seed2";
+    fs::create_directories(run2 / "snapshots");
+    write(run2 / "log.txt", "finished: S = 3.000\n");
+    write(run2 / "series.csv", "S,trailing_wall_push\n3,1e6\n");
+    write(run2 / "measured.csv", "S,alpha_deg,beta_deg,H_over_h0\n1,7,8,0.7\n3,9,8,0.8\n");
+    std::string out;
+    ASSERT_EQ(run("ORODEM=" + quote((root / "fake-orodem").string()) + " /usr/bin/python3 " +
+                      quote(std::string(ORODEM_SOURCE_DIR) + "/scripts/quasi-static-check") + " --config c.toml" +
+                      " --out " + quote((root / "out").string()) + " --arms v --seeds 1,2 --from 1 --report-only",
+                  &out),
+              0)
+        << out;
+    EXPECT_HAS(out, "v/seed1: alpha 5.00 deg, beta 9.00 deg (1 <= S <= 3), H/h0 0.900, trailing-wall push 2e+06 N");
+    EXPECT_HAS(out, "v/seed2: alpha 8.00 deg, beta 8.00 deg (1 <= S <= 3), H/h0 0.800");
 }
 
 TEST_F(PlotRender, SeedGroupsJoinTheRunsThatDifferOnlyInTheirSeeds) {

@@ -823,6 +823,13 @@ TEST_F(PlotRender, QuasiStaticCheckPairsEachArmWithItsReferenceSeedBySeed) {
                     "seeds per arm to settle: none), beta accepted (|Δ| 0.00, 2 s.e. 0.00, margin 2 deg; seeds per "
                     "arm to settle: 2), H/h0 accepted (|Δ| 0.000, 2 s.e. 0.000, margin 0.1; seeds per arm to settle: 2)");
     EXPECT_HAS(out, "equivalence 2v - v: refuted: alpha refuted (|Δ| 20.25, 2 s.e. 6.73, margin 2 deg;");
+    // Paired over seeds 1-3: v-nosleep - v differs by 1, 0.5, 1 (mean 0.83,
+    // s.e. 0.17): 0.83 + 0.33 <= 2, accepted; 4 sd² / (2 - 0.83)² = 0.24 -> 2
+    // seeds. 2v - v: 25, 23.5, 22 (s.e. 0.87), 23.5 - 1.73 > 2: refuted.
+    EXPECT_HAS(out, "paired equivalence v-nosleep - v (seeds 1,2,3): accepted: alpha accepted (Δ 0.83, 2 s.e. 0.33, "
+                    "margin 2 deg; seeds to settle: 2), beta accepted (Δ 0.00, 2 s.e. 0.00, margin 2 deg;");
+    EXPECT_HAS(out, "paired equivalence 2v - v (seeds 1,2,3): refuted: alpha refuted (Δ 23.50, 2 s.e. 1.73, margin 2 "
+                    "deg; seeds to settle: none)");
     // With a margin beyond the difference: the seeds that would settle it.
     // 2v against v with margin 25: pooled sd sqrt((0.25 + 44.92) / 2) =
     // 4.752 (v's four seeds: sd 6.70), 8 sd² / (25 - 20.25)² = 8.0 -> 9.

@@ -835,6 +835,18 @@ TEST_F(PlotRender, QuasiStaticCheckPairsEachArmWithItsReferenceSeedBySeed) {
     // 4.752 (v's four seeds: sd 6.70), 8 sd² / (25 - 20.25)² = 8.0 -> 9.
     ASSERT_EQ(run(base + " --margins 25,2,0.1", &out), 0) << out;
     EXPECT_HAS(out, "alpha undecided (|Δ| 20.25, 2 s.e. 6.73, margin 25 deg; seeds per arm to settle: 9)");
+    // Student's t for few pairs (--quantile t): three pairs, 2 degrees of
+    // freedom, t = 4.303. 2v - v with margin 27: 23.5 + 2 x 0.866 = 25.23
+    // accepts with 2, 23.5 + 4.303 x 0.866 = 27.23 does not (and 23.5 -
+    // 3.73 is inside 27: undecided); the pairs to settle at sd 1.5 and room
+    // 3.5: 2 pairs 12.706 x 1.5 / sqrt(2) = 13.5, 3 pairs 3.73, 4 pairs
+    // 3.182 x 1.5 / 2 = 2.39 <= 3.5: 4 (with 2: 4 x 2.25 / 12.25 -> 2).
+    ASSERT_EQ(run(base + " --margins 27,2,0.1", &out), 0) << out;
+    EXPECT_HAS(out, "paired equivalence 2v - v (seeds 1,2,3): accepted: alpha accepted (Δ 23.50, 2 s.e. 1.73, margin "
+                    "27 deg; seeds to settle: 2)");
+    ASSERT_EQ(run(base + " --margins 27,2,0.1 --quantile t", &out), 0) << out;
+    EXPECT_HAS(out, "paired equivalence 2v - v (seeds 1,2,3, t quantile): undecided: alpha undecided (Δ 23.50, 4.303 "
+                    "s.e. 3.73, margin 27 deg; seeds to settle: 4)");
     EXPECT_NE(run(base + " --margins 2,0,0.1", &out), 0);
     EXPECT_HAS(out, "--margins: '2,0,0.1' is not three positive numbers");
 }

@@ -91,6 +91,7 @@ void Simulation::restore_internals(Internals&& v) {
     for (std::size_t w = 0; w < walls.size(); ++w) wall_law_.push_back(wall_law(w));
     builder_.x_ref() = std::move(v.x_ref);
     builder_.set_rebuild_count(v.rebuilds);
+    builder_.set_built_order(particles.slot_of_id);  // checkpoints hold the lists in the slot order they were built in
     wall_shift_ = std::move(v.wall_shift);
     max_disp2_ = v.max_disp2;
     force_rebuild_ = v.force_rebuild;

@@ -1,6 +1,8 @@
 #include "orodem/neighbor/pair_builder.hpp"
 #include "orodem/core/parallel.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -44,17 +46,17 @@ void permute_column(std::vector<T>& col, const std::vector<std::uint32_t>& perm,
 
 }  // namespace
 
-void HistoryTable::reset(std::size_t n) {
-    std::size_t size = 16;
-    int bits = 4;
-    while (size < 2 * n) {
-        size <<= 1;
-        ++bits;
-    }
-    keys_.assign(size, kEmpty);  // keeps the capacity: no allocation once grown
-    xi_.resize(size);
-    mask_ = size - 1;
-    shift_ = 64 - bits;
+Vec2 PairBuilder::old_xi(const std::vector<std::uint32_t>& begin, const std::vector<std::uint64_t>& keys,
+                         const std::vector<Vec2>& xis, std::uint32_t owner_a, std::uint32_t owner_b,
+                         std::uint64_t key) {
+    for (const std::uint32_t o : {owner_a, owner_b})
+        for (std::uint32_t q = begin[o]; q < begin[o + 1]; ++q)
+            if (keys[q] == key) {
+                const Vec2 xi = xis[q];
+                // An untouched contact restarts at +0 (a -0 component is not carried).
+                return (xi.x != 0.0 || xi.y != 0.0) ? xi : Vec2{};
+            }
+    return {};
 }
 
 void PairBuilder::sort_by_cell(ParticleStore& p, const Settings& s) {
@@ -124,32 +126,20 @@ void PairBuilder::build_pairs(const ParticleStore& p, const BondTopology& bonds,
     const std::size_t n = p.size();
     const int nx = grid_.nx, ny = grid_.ny;
     const double W = s.period_x;
-    // visit(i, emit): calls emit(j, shift, bonded) for every pair owned by i,
-    // always in the same order. Used for counting and for filling.
-    auto visit = [&](std::size_t i, auto&& emit) {
-        const std::uint32_t id_i = p.id[i];
-        if (!bonds.begin.empty()) {
-            for (std::uint32_t b = bonds.begin[id_i]; b < bonds.begin[id_i + 1]; ++b) {
-                const std::uint32_t j = p.slot_of_id[bonds.partner[b]];
-                if (j <= i) continue;
-                int shift = 0;
-                if (s.periodic_x) shift = static_cast<int>(std::lround((p.x[i].x - p.x[j].x) / W));
-                emit(j, shift, true);
-            }
-        }
-        const Vec2 xi = p.x[i];
-        const double ri = p.radius[i];
-        const std::int32_t cl = p.cluster[i];
-        auto consider = [&](std::uint32_t j, int shift) {
-            if (cl >= 0 && p.cluster[j] == cl) return;  // bonded: not a contact
-            const Vec2 d = xi - (p.x[j] + Vec2{shift * W, 0.0});
-            const double cut = ri + p.radius[j] + s.skin;
-            if (norm2(d) < cut * cut) emit(j, shift, false);
-        };
+    // scan(i, room): writes the pairs owned by i to room(bound), a buffer
+    // of at least `bound` entries (the candidates' count), always in the same
+    // order, and returns how many it wrote. Every candidate is written and
+    // the count advances only for a pair within the cut-off, so the
+    // distance test costs no branch (a mispredicted one per two or three
+    // candidates, otherwise).
+    auto scan = [&](std::size_t i, auto&& room) -> std::uint32_t {
+        struct Range { std::uint32_t b, e; int shift; };
+        Range r[5];
+        int nr = 0;
         const std::uint32_t c = cell_of_[i];
+        r[nr++] = {static_cast<std::uint32_t>(i) + 1, cell_start_[c + 1], 0};
         const int cx = static_cast<int>(c / static_cast<std::uint32_t>(ny));
         const int cy = static_cast<int>(c % static_cast<std::uint32_t>(ny));
-        for (std::uint32_t j = static_cast<std::uint32_t>(i) + 1; j < cell_start_[c + 1]; ++j) consider(j, 0);
         for (const auto& st : kStencil) {
             int jx = cx + st[0];
             const int jy = cy + st[1];
@@ -166,36 +156,98 @@ void PairBuilder::build_pairs(const ParticleStore& p, const BondTopology& bonds,
                 jx = jx < 0 ? jx + nx : jx - nx;
             }
             const std::uint32_t cj = static_cast<std::uint32_t>(jx * ny + jy);
-            for (std::uint32_t j = cell_start_[cj]; j < cell_start_[cj + 1]; ++j) consider(j, shift);
+            r[nr++] = {cell_start_[cj], cell_start_[cj + 1], shift};
         }
+        const std::uint32_t id_i = p.id[i];
+        const std::uint32_t b0 = bonds.begin.empty() ? 0 : bonds.begin[id_i];
+        const std::uint32_t b1 = bonds.begin.empty() ? 0 : bonds.begin[id_i + 1];
+        std::size_t bound = b1 - b0;
+        for (int q = 0; q < nr; ++q) bound += r[q].e > r[q].b ? r[q].e - r[q].b : 0;
+        Candidate* const out = room(bound);
+        std::uint32_t k = 0;
+        for (std::uint32_t b = b0; b < b1; ++b) {  // the cluster bonds owned by i
+            const std::uint32_t j = p.slot_of_id[bonds.partner[b]];
+            int shift = 0;
+            if (s.periodic_x) shift = static_cast<int>(std::lround((p.x[i].x - p.x[j].x) / W));
+            out[k] = {j, static_cast<std::int8_t>(shift), 1};
+            k += j > i ? 1 : 0;
+        }
+        const Vec2 xi = p.x[i];
+        const double ri = p.radius[i];
+        const std::int32_t cl = p.cluster[i];
+        const Vec2* const x = p.x.data();
+        const double* const radius = p.radius.data();
+        const std::int32_t* const cluster = p.cluster.data();
+        const double skin = s.skin;
+        for (int q = 0; q < nr; ++q) {
+            const int shift = r[q].shift;
+            for (std::uint32_t j = r[q].b; j < r[q].e; ++j) {
+                const Vec2 d = xi - (x[j] + Vec2{shift * W, 0.0});
+                const double cut = ri + radius[j] + skin;
+                // Within the cut-off, and not of the same cluster (bonded:
+                // not a contact); bitwise, not short-circuit, so no branch.
+                const std::uint32_t near = norm2(d) < cut * cut ? 1u : 0u;
+                const std::uint32_t other = static_cast<std::uint32_t>(cluster[j] != cl) | static_cast<std::uint32_t>(cl < 0);
+                out[k] = {j, static_cast<std::int8_t>(shift), 0};
+                k += near & other;
+            }
+        }
+        return k;
     };
 
-    count_.assign(n, 0);
-    const long long nn = static_cast<long long>(n);
-#pragma omp parallel for schedule(static) if(nn >= kParallelMin)
-    for (long long i = 0; i < nn; ++i) {
-        std::uint32_t k = 0;
-        visit(static_cast<std::size_t>(i), [&](std::uint32_t, int, bool) { ++k; });
-        count_[static_cast<std::size_t>(i)] = k;
-    }
+    // One scan: each thread fills its own buffer with the pairs of a
+    // contiguous range of owners (in owner order), then, once the offsets
+    // are known, copies them to their places. The list is the same at any
+    // thread count. The old pairs' ξ (swapped out by rebuild()): a pair of
+    // the new list was owned, if it existed, by the slot one of its two discs
+    // had when the old list was built, so it is found by its key among the
+    // few pairs of those two old owners (none at a first build).
+    count_.resize(n);
     cs.begin.resize(n + 1);
-    cs.begin[0] = 0;
-    for (std::size_t i = 0; i < n; ++i) cs.begin[i + 1] = cs.begin[i] + count_[i];
-    cs.resize(cs.begin[n]);
-#pragma omp parallel for schedule(static) if(nn >= kParallelMin)
-    for (long long ii = 0; ii < nn; ++ii) {
-        const std::size_t i = static_cast<std::size_t>(ii);
-        std::uint32_t k = cs.begin[i];
-        visit(i, [&](std::uint32_t j, int shift, bool bonded) {
-            cs.i[k] = static_cast<std::uint32_t>(i);
-            cs.j[k] = j;
-            cs.key[k] = pair_key(p.id[i], p.id[j]);
-            cs.shift[k] = static_cast<std::int8_t>(shift);
-            cs.bonded[k] = bonded ? 1 : 0;
-            cs.f[k] = {};
-            cs.c[k] = 0.0;
-            ++k;
-        });
+    const long long nn = static_cast<long long>(n);
+    const int nth = nn >= kParallelMin ? omp_get_max_threads() : 1;
+    if (found_.size() < static_cast<std::size_t>(nth)) found_.resize(static_cast<std::size_t>(nth));
+    const bool carry = old_begin_.size() == n + 1 && built_slot_of_id_.size() == n;
+    const std::uint32_t* const old_slot = built_slot_of_id_.data();
+#pragma omp parallel num_threads(nth)
+    {
+        const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
+        const std::size_t nt = static_cast<std::size_t>(omp_get_num_threads());
+        const std::size_t b = n * t / nt, e = n * (t + 1) / nt;
+        std::vector<Candidate>& buf = found_[t];
+        std::size_t used = 0;
+        for (std::size_t i = b; i < e; ++i) {
+            const std::uint32_t k = scan(i, [&](std::size_t bound) {
+                if (buf.size() < used + bound) buf.resize(std::max(used + bound, 2 * buf.size()));  // grows once
+                return buf.data() + used;
+            });
+            count_[i] = k;
+            used += k;
+        }
+#pragma omp barrier
+#pragma omp single
+        {
+            cs.begin[0] = 0;
+            for (std::size_t i = 0; i < n; ++i) cs.begin[i + 1] = cs.begin[i] + count_[i];
+            cs.resize(cs.begin[n]);
+        }
+        std::size_t q = cs.begin[b];
+        const Candidate* f = buf.data();
+        for (std::size_t i = b; i < e; ++i) {
+            const std::uint32_t id_i = p.id[i];
+            for (std::uint32_t m = 0; m < count_[i]; ++m, ++q, ++f) {
+                const std::uint32_t id_j = p.id[f->j];
+                const std::uint64_t key = pair_key(id_i, id_j);
+                cs.i[q] = static_cast<std::uint32_t>(i);
+                cs.j[q] = f->j;
+                cs.shift[q] = f->shift;
+                cs.bonded[q] = f->bonded;
+                cs.key[q] = key;
+                cs.xi[q] = carry ? old_xi(old_begin_, old_key_, old_xi_, old_slot[id_i], old_slot[id_j], key) : Vec2{};
+                cs.f[q] = {};
+                cs.c[q] = 0.0;
+            }
+        }
     }
     // Incoming index by partner slot, ascending pair index within each slot.
     cs.in_begin.assign(n + 1, 0);
@@ -241,13 +293,19 @@ void PairBuilder::build_wall_pairs(const ParticleStore& p, const std::vector<Wal
     w.begin[0] = 0;
     for (std::size_t i = 0; i < n; ++i) w.begin[i + 1] = w.begin[i] + count_[i];
     w.resize(w.begin[n]);
+    // As for the pairs: a disc's old wall contacts, at its slot of the old list.
+    const bool carry = old_wall_begin_.size() == n + 1 && built_slot_of_id_.size() == n;
+    const std::uint32_t* const old_slot = built_slot_of_id_.data();
 #pragma omp parallel for schedule(static) if(nn >= kParallelMin)
     for (long long ii = 0; ii < nn; ++ii) {
         const std::size_t i = static_cast<std::size_t>(ii);
         std::uint32_t k = w.begin[i];
         visit(i, [&](std::size_t wall) {
+            const std::uint64_t key = wall_key(p.id[i], wall);
             w.wall[k] = static_cast<std::uint16_t>(wall);
-            w.key[k] = wall_key(p.id[i], wall);
+            w.key[k] = key;
+            const std::uint32_t o = carry ? old_slot[p.id[i]] : 0;
+            w.xi[k] = carry ? old_xi(old_wall_begin_, old_wall_key_, old_wall_xi_, o, o, key) : Vec2{};
             w.f[k] = {};
             w.c[k] = 0.0;
             ++k;
@@ -259,31 +317,19 @@ void PairBuilder::rebuild(ParticleStore& p, const BondTopology& bonds,
                           const std::vector<Wall>& walls, const Settings& s, ContactStore& cs,
                           WallContactStore& ws) {
     ++rebuilds_;
-    // (1) Save history by key. Wall keys and pair keys go through the table
-    // in turn (a pair's key and a wall contact's may coincide).
-    auto save = [&](const auto& keys, const auto& xis, std::size_t count) {
-        std::size_t touched = 0;
-        for (std::size_t k = 0; k < count; ++k) touched += (xis[k].x != 0.0 || xis[k].y != 0.0) ? 1 : 0;
-        old_hist_.reset(touched);
-        for (std::size_t k = 0; k < count; ++k)
-            if (xis[k].x != 0.0 || xis[k].y != 0.0) old_hist_.insert(keys[k], xis[k]);
-    };
-    auto restore = [&](const auto& keys, auto& xis, std::size_t count) {
-        const long long m = static_cast<long long>(count);
-#pragma omp parallel for schedule(static) if(m >= kParallelMin)
-        for (long long k = 0; k < m; ++k)
-            xis[static_cast<std::size_t>(k)] = old_hist_.find(keys[static_cast<std::size_t>(k)]);
-    };
-
-    save(cs.key, cs.xi, cs.size());
+    // (1) Keep the old lists' offsets, keys and ξ (swapped, not copied: the
+    // buffers alternate between the stores and the builder, no allocation
+    // once grown); the new lists take each pair's ξ from them in (4) and (5).
+    std::swap(old_begin_, cs.begin);
+    std::swap(old_key_, cs.key);
+    std::swap(old_xi_, cs.xi);
+    std::swap(old_wall_begin_, ws.begin);
+    std::swap(old_wall_key_, ws.key);
+    std::swap(old_wall_xi_, ws.xi);
     sort_by_cell(p, s);
     build_pairs(p, bonds, s, cs);
-    restore(cs.key, cs.xi, cs.size());
-
-    save(ws.key, ws.xi, ws.size());
     build_wall_pairs(p, walls, s, ws);
-    restore(ws.key, ws.xi, ws.size());
-
+    built_slot_of_id_ = p.slot_of_id;  // the order these lists were built in (no allocation once sized)
     x_ref_ = p.x;
 }
 

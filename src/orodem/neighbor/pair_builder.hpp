@@ -1,18 +1,21 @@
 // PairBuilder: O(N) contact detection with a cell grid and a Verlet skin.
 //
-// At a rebuild it (1) saves the tangential history of the old pairs by id-pair
-// key, (2) wraps periodic positions, (3) counting-sorts the discs by cell
-// (stable, so the order is a function of the previous order only) and
-// permutes every particle column; cells are numbered column by column (x
-// major), so the discs of one x column of cells occupy one slot range (the
-// sleeping zones of engine/sleep rely on it), (4) lists candidate pairs with a half
-// stencil (same cell with j > i, then cells E, NW, N, NE) plus the cluster
-// bonds owned by their lower slot, count → exclusive scan → fill, so the pair
-// order never depends on the thread split, (5) does the same for disc-wall
-// candidates, and (6) moves ξ to the new pair slots by looking their keys up
-// in a hash table of the old pairs' non-zero ξ (HistoryTable: each key is
-// unique, so every lookup finds what any exact map would, and the result
-// depends on no order). Pairs of one cluster are bonds and never enter
+// At a rebuild it (1) keeps the old pair and wall lists (offsets, keys and ξ,
+// swapped out of the stores, no copy), (2) wraps periodic positions, (3)
+// counting-sorts the discs by cell (stable, so the order is a function of the
+// previous order only) and permutes every particle column; cells are numbered
+// column by column (x major), so the discs of one x column of cells occupy one
+// slot range (the sleeping zones of engine/sleep rely on it), (4) lists
+// candidate pairs with a half stencil (same cell with j > i, then cells E, NW,
+// N, NE) plus the cluster bonds owned by their lower slot, count → exclusive
+// scan → fill, so the pair order never depends on the thread split, and (5)
+// does the same for disc-wall candidates. While filling, each new pair takes
+// its ξ from the old list: if it existed it was owned by the old slot of one
+// of its two discs (the sort's permutation gives both), so it is found by its
+// key among those two owners' few old pairs, which lie near each other in
+// memory as the slots are sorted by cell. Each key is unique, so this finds
+// what an exact map by key would (a zero ξ comes back as +0), in parallel and
+// independent of any order. Pairs of one cluster are bonds and never enter
 // detection.
 //
 // A rebuild is needed when the largest disc displacement since the last one
@@ -28,40 +31,6 @@
 #include "orodem/state/particles.hpp"
 
 namespace orodem {
-
-/// ξ by pair or wall key: open addressing with linear probing in a table of a
-/// power-of-two size at least twice the entries, kept between rebuilds (no
-/// allocation once grown). No key is ~0 (pair_key(a, b) has a < b; wall_key
-/// has a 32-bit id), which marks an empty place.
-class HistoryTable {
-public:
-    /// Empties the table, sized for n entries.
-    void reset(std::size_t n);
-    /// Adds a key not yet in the table.
-    void insert(std::uint64_t key, Vec2 xi) {
-        std::size_t h = place(key);
-        while (keys_[h] != kEmpty) h = (h + 1) & mask_;
-        keys_[h] = key;
-        xi_[h] = xi;
-    }
-    /// ξ of key, {} when it is not in the table.
-    Vec2 find(std::uint64_t key) const {
-        for (std::size_t h = place(key);; h = (h + 1) & mask_) {
-            if (keys_[h] == key) return xi_[h];
-            if (keys_[h] == kEmpty) return {};
-        }
-    }
-
-private:
-    static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
-    std::size_t place(std::uint64_t key) const {
-        return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);  // Fibonacci hashing
-    }
-    std::vector<std::uint64_t> keys_;
-    std::vector<Vec2> xi_;
-    std::size_t mask_ = 0;
-    int shift_ = 64;
-};
 
 struct GridInfo {
     double x0 = 0, y0 = 0;     // lower-left corner [m]
@@ -90,9 +59,13 @@ public:
     const std::vector<Vec2>& x_ref() const { return x_ref_; }
     std::vector<Vec2>& x_ref() { return x_ref_; }
     std::uint64_t rebuild_count() const { return rebuilds_; }
-    /// Checkpoint restore only (io/checkpoint.cpp); x_ref and this count are
-    /// the builder's only state that outlives a rebuild (the rest is scratch).
+    /// Checkpoint restore only (io/checkpoint.cpp); x_ref, this count and the
+    /// slot order the lists were built in are the builder's only state that
+    /// outlives a rebuild (the rest is scratch).
     void set_rebuild_count(std::uint64_t n) { rebuilds_ = n; }
+    /// Checkpoint restore only: the restored pair and wall lists were built
+    /// with the discs in the slots they have now (id -> slot).
+    void set_built_order(const std::vector<std::uint32_t>& slot_of_id) { built_slot_of_id_ = slot_of_id; }
 
 private:
     void sort_by_cell(ParticleStore& p, const Settings& s);
@@ -100,6 +73,12 @@ private:
                      ContactStore& c);
     void build_wall_pairs(const ParticleStore& p, const std::vector<Wall>& walls,
                           const Settings& s, WallContactStore& w);
+    /// ξ of `key` in the old list (CSR offsets `begin` by old slot), looked
+    /// for among the entries of old slots owner_a and owner_b; {} when absent
+    /// or zero.
+    static Vec2 old_xi(const std::vector<std::uint32_t>& begin, const std::vector<std::uint64_t>& keys,
+                       const std::vector<Vec2>& xis, std::uint32_t owner_a, std::uint32_t owner_b,
+                       std::uint64_t key);
 
     GridInfo grid_;
     std::vector<std::uint32_t> cell_of_;     // per slot
@@ -107,7 +86,18 @@ private:
     std::vector<std::uint32_t> perm_;        // new slot -> old slot
     std::vector<unsigned char> scratch_;     // column permutation buffer
     std::vector<std::uint32_t> count_;       // per-slot pair counts
-    HistoryTable old_hist_;                  // the old pairs' (then walls') non-zero ξ by key
+    struct Candidate {
+        std::uint32_t j;      // partner slot
+        std::int8_t shift;    // periodic image
+        std::uint8_t bonded;  // 1: a cluster bond
+    };
+    std::vector<std::vector<Candidate>> found_;  // per thread: the pairs of its owners, in order
+    // The lists of the previous rebuild, by old slot (swapped out of the
+    // stores at a rebuild): where the new pairs find their ξ.
+    std::vector<std::uint32_t> old_begin_, old_wall_begin_;
+    std::vector<std::uint64_t> old_key_, old_wall_key_;
+    std::vector<Vec2> old_xi_, old_wall_xi_;
+    std::vector<std::uint32_t> built_slot_of_id_;  // id -> slot when the lists were last built
     std::vector<Vec2> x_ref_;
     std::uint64_t rebuilds_ = 0;
 };

@@ -92,6 +92,8 @@ private:
         std::uint8_t bonded;  // 1: a cluster bond
     };
     std::vector<std::vector<Candidate>> found_;  // per thread: the pairs of its owners, in order
+    double r_max_ = 0.0;                           // largest radius at the last sort [m]
+    std::vector<std::pair<Vec2, Vec2>> wall_box_;  // per wall: where its candidates can be (lo, hi) [m]
     // The lists of the previous rebuild, by old slot (swapped out of the
     // stores at a rebuild): where the new pairs find their ξ.
     std::vector<std::uint32_t> old_begin_, old_wall_begin_;

@@ -164,7 +164,7 @@ void PairBuilder::build_pairs(const ParticleStore& p, const BondTopology& bonds,
         const std::uint32_t b0 = bonds.begin.empty() ? 0 : bonds.begin[id_i];
         const std::uint32_t b1 = bonds.begin.empty() ? 0 : bonds.begin[id_i + 1];
         std::size_t bound = b1 - b0;
-        for (int q = 0; q < nr; ++q) bound += r[q].e > r[q].b ? r[q].e - r[q].b : 0;
+        for (int q = 0; q < nr; ++q) bound += r[q].e - r[q].b;  // cell_start_ ascends: e >= b
         Candidate* const out = room(bound);
         std::uint32_t k = 0;
         for (std::uint32_t b = b0; b < b1; ++b) {  // the cluster bonds owned by i

@@ -7,11 +7,13 @@
 // column by column (x major), so the discs of one x column of cells occupy one
 // slot range (the sleeping zones of engine/sleep rely on it), (4) lists
 // candidate pairs with a half stencil (same cell with j > i, then cells E, NW,
-// N, NE) plus the cluster bonds owned by their lower slot, count → exclusive
-// scan → fill, so the pair order never depends on the thread split, and (5)
-// does the same for disc-wall candidates. While filling, each new pair takes
-// its ξ from the old list: if it existed it was owned by the old slot of one
-// of its two discs (the sort's permutation gives both), so it is found by its
+// N, NE) plus the cluster bonds owned by their lower slot, in one scan into
+// per-thread buffers (each thread a contiguous range of owners), then an
+// exclusive scan of the counts and a copy to the offsets, so the pair order
+// never depends on the thread split, and (5) lists the disc-wall candidates
+// (count → exclusive scan → fill). While filling, each new pair takes its ξ
+// from the old list: if it existed it was owned by the old slot of one of its
+// two discs (built_slot_of_id_ gives both), so it is found by its
 // key among those two owners' few old pairs, which lie near each other in
 // memory as the slots are sorted by cell. Each key is unique, so this finds
 // what an exact map by key would (a zero ξ comes back as +0), in parallel and

@@ -8,10 +8,12 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "orodem/analysis/wedge_profile.hpp"
 #include "orodem/boundary/basal_boundary.hpp"
@@ -27,10 +29,10 @@ using namespace orodem;
 
 namespace {
 
-Config plate_config(bool sleep) {
+Config plate_config(bool sleep, const char* inertia_floor = "1.0") {
     return parse_config(std::string("[run]\nexperiment = \"critical-wedge\"\n[wedge]\nv = 0.2\nmu_bp = 0.3\n"
-                                    "s_max = 1.0\npro_margin = 25.0\nsleep = ") +
-                            (sleep ? "true" : "false") +
+                                    "s_max = 1.0\npro_margin = 25.0\ninertia_floor = ") +
+                            inertia_floor + "\nsleep = " + (sleep ? "true" : "false") +
                             "\n[packing]\nkind = \"clusters\"\nr_min = 0.5\nr_max = 0.75\n"
                             "h0 = 4.0\n",
                         "plate.toml");
@@ -161,6 +163,50 @@ TEST(Sleep, CheckpointWithSleepingZonesContinuesBitForBit) {
         ASSERT_EQ(b.sim.state_hash(), a.sim.state_hash()) << "diverged by step " << a.sim.step_count;
     }
     EXPECT_GT(a.sim.rebuild_count(), r1);
+}
+
+// The inertia floor (wedge.inertia_floor) with sleeping zones: every free
+// disc, the woken ones included, moves with max(m, m_f); asleep and fixed
+// ones have no inverse mass; a checkpoint restores the columns and
+// make_wedge the floor, so the copy continues bit for bit on 2 threads.
+TEST(Sleep, InertiaFloorHoldsForWokenDiscsAndThroughACheckpoint) {
+    const test::SerialOmp serial;
+    const Config c = plate_config(true, "1.3");
+    const double m_f = inertia_floor_mass(c);
+    ASSERT_GT(m_f, 0.0);
+    auto floored_free_discs = [&](const Simulation& sim) {
+        const ParticleStore& p = sim.particles;
+        std::size_t floored = 0;
+        for (std::size_t s = 0; s < p.size(); ++s) {
+            if (p.flags[s] & (kFlagFixed | kFlagAsleep)) {
+                EXPECT_EQ(p.inv_mass[s], 0.0);
+                continue;
+            }
+            EXPECT_EQ(p.inv_mass[s], 1.0 / std::max(p.mass[s], m_f)) << "disc " << p.id[s];
+            floored += p.mass[s] < m_f;
+        }
+        return floored;
+    };
+    WedgeSetup a = sleeping_plate(c);
+    ASSERT_GT(a.sim.sleeping_count(), 0u);
+    EXPECT_GT(floored_free_discs(a.sim), 0u);
+    std::vector<std::uint8_t> was_asleep(a.sim.particles.size());
+    for (std::size_t s = 0; s < a.sim.particles.size(); ++s)
+        was_asleep[a.sim.particles.id[s]] = (a.sim.particles.flags[s] & kFlagAsleep) != 0;
+    WedgeSetup b = copy_through_checkpoint(a, c);
+    EXPECT_EQ(b.sim.params.m_inertia_min, m_f);
+    for (int k = 0; k < 30; ++k) {
+        omp_set_num_threads(1);
+        a.sim.advance(100);
+        omp_set_num_threads(2);
+        b.sim.advance(100);
+        ASSERT_EQ(b.sim.state_hash(), a.sim.state_hash()) << "diverged by step " << a.sim.step_count;
+    }
+    EXPECT_GT(floored_free_discs(a.sim), 0u);
+    std::size_t woken = 0;
+    for (std::size_t s = 0; s < a.sim.particles.size(); ++s)
+        woken += was_asleep[a.sim.particles.id[s]] && !(a.sim.particles.flags[s] & kFlagAsleep);
+    std::printf("  %zu discs woke after the checkpoint\n", woken);
 }
 
 // The wedge step in one parallel region, where each thread applies the base

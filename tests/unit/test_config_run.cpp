@@ -108,6 +108,25 @@ TEST(ConfigRun, SleepKeysOfTheWedgeTable) {
     }
 }
 
+TEST(ConfigRun, InertiaFloorIsAFactorOfRMinUnderTheCoulombBase) {
+    EXPECT_DOUBLE_EQ(parse_config(kWedge, "run.toml", {}).wedge.inertia_floor, 1.0);  // off unless asked for
+    EXPECT_DOUBLE_EQ(parse_config(kWedge + "[wedge]\ninertia_floor = 1.5\n", "run.toml", {}).wedge.inertia_floor, 1.5);
+    struct Case {
+        const char* lines;
+        const char* why;
+    };
+    const Case cases[] = {
+        {"inertia_floor = 0.5", "[1, 10]"},
+        {"inertia_floor = 11", "[1, 10]"},
+        {"base_law = \"traction\"\ninertia_floor = 1.5", "Coulomb base only"},
+    };
+    for (const Case& k : cases) {
+        const std::string msg = refusal_of("[wedge]\n" + std::string(k.lines) + "\n");
+        EXPECT_NE(msg.find("wedge.inertia_floor"), std::string::npos) << k.lines << " -> " << msg;
+        EXPECT_NE(msg.find(k.why), std::string::npos) << k.lines << " -> " << msg;
+    }
+}
+
 TEST(ConfigRun, DragGainKeepsTheSumOfGainsBelowTwo) {
     const std::string traction = "base_law = \"traction\"\n";
     EXPECT_DOUBLE_EQ(parse_config(kWedge, "run.toml", {}).wedge.drag_gain, 0.0);  // off unless asked for

@@ -131,7 +131,7 @@ TEST(PairKernel, BitIdenticalToThePerPairLoop) {
                 // The ranges [0, a), [a, b), [b, n) with a, b of all residues mod 4.
                 ContactStore got = s.cs;
                 std::vector<double> gn(n), gs(n);
-                pair_dashpots(law, s.p.mass.data(), s.p.inv_mass.data(), got.i.data(), got.j.data(), 0, n, gn.data(),
+                pair_dashpots(law, s.p.mass.data(), s.p.inv_mass.data(), 0.0, got.i.data(), got.j.data(), 0, n, gn.data(),
                               gs.data());
                 const PairKernelData kd{s.p.x.data(),  s.p.v.data(),      s.p.omega.data(), s.p.radius.data(),
                                         got.i.data(),  got.j.data(),      got.shift.data(), got.bonded.data(),
@@ -159,7 +159,7 @@ TEST(PairKernel, GatherBitIdenticalToThePlainSums) {
         const double dt = 1e-4;
         const std::size_t n = s.p.size(), m = s.cs.size();
         std::vector<double> gn(m), gs(m);
-        pair_dashpots(law, s.p.mass.data(), s.p.inv_mass.data(), s.cs.i.data(), s.cs.j.data(), 0, m, gn.data(),
+        pair_dashpots(law, s.p.mass.data(), s.p.inv_mass.data(), 0.0, s.cs.i.data(), s.cs.j.data(), 0, m, gn.data(),
                       gs.data());
         const PairKernelData kd{s.p.x.data(),   s.p.v.data(),       s.p.omega.data(), s.p.radius.data(),
                                 s.cs.i.data(),  s.cs.j.data(),      s.cs.shift.data(), s.cs.bonded.data(),
@@ -197,7 +197,7 @@ TEST(PairKernel, GatherBitIdenticalToThePlainSums) {
                             s.cs.f.data(),     s.cs.c.data(),       s.cs.size(),
                             no_walls.data(),   nullptr,             nullptr,             nullptr,
                             nullptr,           nullptr,             nullptr,             g,
-                            dt,                true,                true};
+                            dt,                0.0,                 true,                true};
         gather_range(gd, 0, n / 3);
         gather_range(gd, n / 3, n);
         EXPECT_TRUE(same_bits(s.p.force, want_f));

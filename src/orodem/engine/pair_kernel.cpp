@@ -281,7 +281,7 @@ struct Out {
         const double dist = std::sqrt(r2);
         const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
         const Vec2 v_wall = w.velocity + w.surface_speed * u;
-        const PairKinematics kin{(1.0 / dist) * dx, ri - dist, d.v[i] - v_wall, ri * d.omega[i], d.mass[i]};
+        const PairKinematics kin{(1.0 / dist) * dx, ri - dist, d.v[i] - v_wall, ri * d.omega[i], std::max(d.mass[i], d.m_inertia_min)};
         Vec2 xi = d.wall_xi[k];
         const PairForce pf = eval_contact<false>(d.wall_law[d.wall[k]], kin, d.dt, xi);
         if (d.update_history) d.wall_xi[k] = xi;
@@ -405,10 +405,12 @@ KernelIsa kernel_isa() { return kernels().isa; }
 
 void gather_range(const GatherData& d, std::size_t begin, std::size_t end) { kernels().gather(d, begin, end); }
 
-void pair_dashpots(const LawParams& law, const double* mass, const double* inv_mass, const std::uint32_t* i,
-                   const std::uint32_t* j, std::size_t begin, std::size_t end, double* gamma_n, double* gamma_s) {
+void pair_dashpots(const LawParams& law, const double* mass, const double* inv_mass, double m_inertia_min,
+                   const std::uint32_t* i, const std::uint32_t* j, std::size_t begin, std::size_t end,
+                   double* gamma_n, double* gamma_s) {
     for (std::size_t k = begin; k < end; ++k) {
-        const double mi = mass[i[k]], mj = mass[j[k]];
+        // The inertial masses (max(m, 0) is m, bit for bit).
+        const double mi = std::max(mass[i[k]], m_inertia_min), mj = std::max(mass[j[k]], m_inertia_min);
         // A fixed disc is infinitely heavy: the pair's effective mass is the free disc's own.
         const double m_eff = inv_mass[j[k]] == 0.0 ? mi : (inv_mass[i[k]] == 0.0 ? mj : mi * mj / (mi + mj));
         double gn = law.damp_mass_n * m_eff;

@@ -62,9 +62,11 @@ struct PairKernelData {
 /// other one is fixed or asleep (inverse mass 0). They change only when the
 /// pairs or an inverse mass do, so the engine computes them then instead of
 /// in every step (a division and, with restitution damping, a square root
-/// per pair less in phase A).
-void pair_dashpots(const LawParams& law, const double* mass, const double* inv_mass, const std::uint32_t* i,
-                   const std::uint32_t* j, std::size_t begin, std::size_t end, double* gamma_n, double* gamma_s);
+/// per pair less in phase A). The masses are the inertial ones, max(m,
+/// m_inertia_min) [kg] (SimParams::m_inertia_min).
+void pair_dashpots(const LawParams& law, const double* mass, const double* inv_mass, double m_inertia_min,
+                   const std::uint32_t* i, const std::uint32_t* j, std::size_t begin, std::size_t end,
+                   double* gamma_n, double* gamma_s);
 
 /// The instruction-set versions of the kernels.
 enum class KernelIsa { sse2, avx2, avx512 };
@@ -111,6 +113,7 @@ struct GatherData {
     const LawParams* wall_law;  // per wall
     Vec2 gravity;  // [m/s²]
     double dt;     // [s]
+    double m_inertia_min;  // a wall contact's dashpot mass is max(m_i, this) (SimParams::m_inertia_min) [kg]
     bool update_history;
     bool kick;     // also v += F/m dt/2, ω += T/I dt/2
 };

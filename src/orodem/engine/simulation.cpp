@@ -175,7 +175,7 @@ void Simulation::refresh_dashpots() {
     {
         const auto [b, e] = thread_range(npairs, 64);
         if (b < e)
-            pair_dashpots(params.law, p.mass.data(), p.inv_mass.data(), cs.i.data(), cs.j.data(), b, e,
+            pair_dashpots(params.law, p.mass.data(), p.inv_mass.data(), params.m_inertia_min, cs.i.data(), cs.j.data(), b, e,
                           pair_gamma_n_.data(), pair_gamma_s_.data());
     }
     dashpots_stale_ = false;
@@ -201,8 +201,8 @@ GatherData Simulation::gather_data(bool update_history, bool kick) {
             p.inv_mass.data(), p.inv_inertia.data(), p.force.data(),     p.torque.data(),  cs.begin.data(),
             cs.in_begin.data(), cs.in_pair.data(),  cs.f.data(),         cs.c.data(),      cs.size(),
             ws.begin.data(),  ws.wall.data(),      ws.xi.data(),         ws.f.data(),      ws.c.data(),
-            walls.data(),     wall_law_.data(),    params.gravity,       params.dt,        update_history,
-            kick};
+            walls.data(),     wall_law_.data(),    params.gravity,       params.dt,        params.m_inertia_min,
+            update_history,   kick};
 }
 
 template <bool kUpdateHistory>
@@ -565,7 +565,8 @@ void Simulation::step() {
 
 double Simulation::kinetic_energy() const {
     const ParticleStore& p = particles;
-    return deterministic_sum(p.size(), [&](std::size_t i) { return 0.5 * p.mass[i] * norm2(p.v[i]); });
+    const double m_min = params.m_inertia_min;
+    return deterministic_sum(p.size(), [&](std::size_t i) { return 0.5 * p.inertial_mass(i, m_min) * norm2(p.v[i]); });
 }
 
 EnergyReport Simulation::energies() const {
@@ -573,7 +574,7 @@ EnergyReport Simulation::energies() const {
     EnergyReport e;
     e.kinetic_translational = kinetic_energy();
     e.kinetic_rotational = deterministic_sum(p.size(), [&](std::size_t i) {
-        const double inertia = 0.5 * p.mass[i] * p.radius[i] * p.radius[i];
+        const double inertia = 0.5 * p.inertial_mass(i, params.m_inertia_min) * p.radius[i] * p.radius[i];
         return 0.5 * inertia * p.omega[i] * p.omega[i];
     });
     e.gravitational = deterministic_sum(p.size(), [&](std::size_t i) {

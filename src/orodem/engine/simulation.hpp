@@ -55,6 +55,8 @@ struct SimParams {
     bool periodic_x = false;    // periodic in x with period period_x
     double period_x = 0.0;      // W [m]
     SleepParams sleep;          // off unless enabled
+    double m_inertia_min = 0.0; // inertia floor: a free disc moves with max(m, this) (its weight stays m g;
+                                // wedge.inertia_floor, docs/physics.md); 0 = off [kg]
 };
 
 /// Wall time spent in each phase of step(), accumulated since the start or

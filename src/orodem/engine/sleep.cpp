@@ -103,7 +103,7 @@ void Simulation::apply_sleep(double x_lo, double x_hi) {
             p.torque[s] = 0.0;
         } else if (!sleep && asleep) {
             p.flags[s] &= static_cast<std::uint8_t>(~kFlagAsleep);
-            if (!(p.flags[s] & kFlagFixed)) p.set_free_inertia(s);
+            if (!(p.flags[s] & kFlagFixed)) p.set_free_inertia(s, params.m_inertia_min);
         }
     }
     awake_begin_ = a;

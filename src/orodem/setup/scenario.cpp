@@ -4,6 +4,7 @@
 
 #include <limits>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -48,9 +49,18 @@ double lightest_mass(const Config& c) {
     return c.material.density * std::numbers::pi * r * r;
 }
 
-TimestepInfo timestep_for(const Config& c) {
+double inertia_floor_mass(const Config& c) {
+    if (!is_wedge(c) || !(c.wedge.inertia_floor > 1.0)) return 0.0;
+    const double r = c.wedge.inertia_floor * c.packing.r_min;  // [m]
+    return c.material.density * std::numbers::pi * r * r;
+}
+
+double lightest_inertial_mass(const Config& c) { return std::max(lightest_mass(c), inertia_floor_mass(c)); }
+
+TimestepInfo timestep_for(const Config& c, bool with_floor) {
     try {
-        return choose_timestep(lightest_mass(c), make_law(c.material), c.numerics.dt, c.numerics.safety);
+        const double m_min = with_floor ? lightest_inertial_mass(c) : lightest_mass(c);
+        return choose_timestep(m_min, make_law(c.material), c.numerics.dt, c.numerics.safety);
     } catch (const ConfigError& e) {
         // Name the config key (SPEC §5); the physics layer does not know it.
         throw ConfigError(fmt::format("{}: key 'numerics.dt' = {:g}: {}", c.path, c.numerics.dt, e.what()));
@@ -61,7 +71,7 @@ Simulation make_settle_simulation(const Config& c) {
     Simulation sim;
     sim.particles = generate_packing(c.packing, c.material.density);
     sim.params.law = with_damping_ratio(make_law(c.material), c.packing.settle_damping_ratio);
-    sim.params.dt = timestep_for(c).dt;
+    sim.params.dt = timestep_for(c, false).dt;  // the packing is settled without the inertia floor
     sim.params.gravity = {0.0, -c.numerics.gravity};
     sim.params.skin = c.numerics.skin;
     const double L = c.packing.length;

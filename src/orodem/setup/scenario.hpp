@@ -18,8 +18,18 @@ LawParams with_damping_ratio(LawParams law, double zeta);
 /// Mass of the lightest disc the packing can hold [kg].
 double lightest_mass(const Config& c);
 
-/// dt and its stability margin; throws ConfigError when numerics.dt is too large.
-TimestepInfo timestep_for(const Config& c);
+/// A wedge run's inertia floor, ρ π (wedge.inertia_floor r_min)² [kg]: free
+/// discs move with at least this mass (SimParams::m_inertia_min); 0 when the
+/// floor is off (inertia_floor = 1) and for every other experiment.
+double inertia_floor_mass(const Config& c);
+
+/// The lightest mass a disc moves with: max(lightest_mass, inertia_floor_mass) [kg].
+double lightest_inertial_mass(const Config& c);
+
+/// dt and its stability margin from the lightest inertial mass; throws
+/// ConfigError when numerics.dt is too large. with_floor = false: from the
+/// lightest disc's own mass (the settling of the packing, which has no floor).
+TimestepInfo timestep_for(const Config& c, bool with_floor = true);
 
 /// A simulation of the packing of c settling in its box (not yet initialised
 /// particles are generated from the packing seed).

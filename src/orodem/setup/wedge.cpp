@@ -43,7 +43,7 @@ void check_base_dashpot(const Config& c, double dt) {
     const bool coulomb = is_calibration(c) ? c.calibrate.base_law == "coulomb" : c.wedge.base_law == "coulomb";
     if (!coulomb) return;
     const double k_s = c.material.k_n * c.material.k_s_over_k_n;
-    const double rate = 2.0 * kBaseDampingRatio * std::sqrt(k_s / lightest_mass(c)) * dt;
+    const double rate = 2.0 * kBaseDampingRatio * std::sqrt(k_s / lightest_inertial_mass(c)) * dt;
     if (!(rate < 1.0))
         throw ConfigError(fmt::format("{}: numerics.dt = {:g} s is too long for the Coulomb base's dashpot "
                                       "(2 sqrt(k_s/m) dt = {:.3g} for the lightest disc, must be below 1); lower "
@@ -152,6 +152,12 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer, const RunNumb
     sim.params.dt = t.dt;
     sim.params.gravity = {0.0, -c.numerics.gravity};
     sim.params.skin = c.numerics.skin;
+    // The inertia floor (wedge.inertia_floor): light discs move with the
+    // inertia of a disc of radius inertia_floor r_min; weights are unchanged.
+    sim.params.m_inertia_min = inertia_floor_mass(c);
+    if (sim.params.m_inertia_min > 0.0)
+        for (std::size_t s = 0; s < p.size(); ++s)
+            if (!(p.flags[s] & (kFlagFixed | kFlagAsleep))) p.set_free_inertia(s, sim.params.m_inertia_min);
 
     const double far = 2.0 * h0;                 // bases reach beyond the end walls [m]
     const double tall = 1e3 * h0;                // end walls are effectively unbounded [m]

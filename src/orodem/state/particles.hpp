@@ -8,6 +8,7 @@
 // Identity: id, cluster, flags. Cold (analysis/output): initial_depth, side.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -27,8 +28,8 @@ struct ParticleStore {
     std::vector<double> theta;         // rotation angle [rad]
     std::vector<double> omega;         // spin [rad/s], counter-clockwise positive
     std::vector<double> radius;        // R_i [m]
-    std::vector<double> mass;          // m_i = ρ π R_i² (per unit depth) [kg]
-    std::vector<double> inv_mass;      // 1/m_i, 0 when fixed [1/kg]
+    std::vector<double> mass;          // m_i = ρ π R_i² (per unit depth): the weight's mass [kg]
+    std::vector<double> inv_mass;      // 1/m_i (1/max(m_i, m_inertia_min)), 0 when fixed or asleep [1/kg]
     std::vector<double> inv_inertia;   // 1/I_i, I_i = m_i R_i²/2, 0 when fixed [1/(kg m²)]
     std::vector<Vec2> force;           // total force of the current step [N]
     std::vector<double> torque;        // total torque of the current step [N m]
@@ -73,11 +74,17 @@ struct ParticleStore {
         omega[slot] = 0.0;
     }
 
-    /// The integrator's inverse mass and inertia of a free disc (as add() sets them).
-    void set_free_inertia(std::size_t slot) {
+    /// The mass a disc moves with: its own, or m_inertia_min when lighter (the
+    /// inertia floor, SimParams::m_inertia_min; max(m, 0) is m, bit for bit) [kg].
+    double inertial_mass(std::size_t slot, double m_inertia_min) const { return std::max(mass[slot], m_inertia_min); }
+
+    /// The integrator's inverse mass and inertia of a free disc (as add() sets
+    /// them when m_inertia_min is 0): I = m R²/2 with the inertial mass m.
+    void set_free_inertia(std::size_t slot, double m_inertia_min = 0.0) {
         ++inertia_epoch;
-        inv_mass[slot] = 1.0 / mass[slot];
-        inv_inertia[slot] = 2.0 / (mass[slot] * radius[slot] * radius[slot]);
+        const double m = inertial_mass(slot, m_inertia_min);
+        inv_mass[slot] = 1.0 / m;
+        inv_inertia[slot] = 2.0 / (m * radius[slot] * radius[slot]);
     }
 
     /// Rebuilds slot_of_id from id.

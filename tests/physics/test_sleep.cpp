@@ -29,10 +29,10 @@ using namespace orodem;
 
 namespace {
 
-Config plate_config(bool sleep, const char* inertia_floor = "1.0") {
+Config plate_config(bool sleep, const char* inertia_floor = "1.0", const char* more_wedge_keys = "") {
     return parse_config(std::string("[run]\nexperiment = \"critical-wedge\"\n[wedge]\nv = 0.2\nmu_bp = 0.3\n"
                                     "s_max = 1.0\npro_margin = 25.0\ninertia_floor = ") +
-                            inertia_floor + "\nsleep = " + (sleep ? "true" : "false") +
+                            inertia_floor + "\n" + more_wedge_keys + "sleep = " + (sleep ? "true" : "false") +
                             "\n[packing]\nkind = \"clusters\"\nr_min = 0.5\nr_max = 0.75\n"
                             "h0 = 4.0\n",
                         "plate.toml");
@@ -163,6 +163,42 @@ TEST(Sleep, CheckpointWithSleepingZonesContinuesBitForBit) {
         ASSERT_EQ(b.sim.state_hash(), a.sim.state_hash()) << "diverged by step " << a.sim.step_count;
     }
     EXPECT_GT(a.sim.rebuild_count(), r1);
+}
+
+// The proside buffer (wedge.sleep_buffer_pro): the incoming plate's awake
+// margin alone. The zones' last decision puts the proside bound exactly
+// sleep_buffer_pro h0 left of the leftmost active disc (the rule of
+// engine/sleep.cpp), 1 h0 with the key and 2 h0 (sleep_buffer) without it;
+// every free disc left of the bound, less a cell column of rounding (2 r_max
+// + skin, under 2 m here) and the belt's motion since the rebuild, sleeps,
+// and none right of it does. A key that did nothing, or set the retroside's
+// margin, fails the first check.
+TEST(Sleep, ProsideBufferSetsTheIncomingPlatesAwakeMargin) {
+    const test::SerialOmp serial;
+    const Config c2 = plate_config(true), c1 = plate_config(true, "1.0", "sleep_buffer_pro = 1.0\n");
+    ASSERT_DOUBLE_EQ(c2.wedge.sleep_buffer_pro, 2.0);  // absent: sleep_buffer
+    ASSERT_DOUBLE_EQ(c1.wedge.sleep_buffer, 2.0);
+    const double h0 = c2.packing.h0;
+    for (const auto& [c, buffer] : {std::pair{c2, 2.0 * h0}, std::pair{c1, 1.0 * h0}}) {
+        const WedgeSetup w = sleeping_plate(c);
+        const Simulation::SleepDecision& d = w.sim.last_sleep_decision();
+        ASSERT_TRUE(std::isfinite(d.active_min));
+        EXPECT_DOUBLE_EQ(std::min(d.active_min, 0.0) - d.x_lo, buffer);
+        EXPECT_TRUE(std::isinf(d.x_hi));  // the backstop: no retroside zone
+        const ParticleStore& p = w.sim.particles;
+        std::size_t wrong = 0, asleep = 0;
+        for (std::size_t s = 0; s < p.size(); ++s) {
+            if (p.flags[s] & kFlagFixed) continue;
+            const bool sleeps = (p.flags[s] & kFlagAsleep) != 0;
+            asleep += sleeps;
+            if (sleeps && p.x[s].x > d.x_lo + 0.5 * h0) ++wrong;        // beyond the bound and its rounding
+            if (!sleeps && p.x[s].x < d.x_lo - 0.5 * h0) ++wrong;       // further left than a column
+        }
+        std::printf("  buffer %.1f m: active from x = %.2f m, bound %.2f m, %zu asleep\n", buffer, d.active_min,
+                    d.x_lo, asleep);
+        EXPECT_GT(asleep, 0u);
+        EXPECT_EQ(wrong, 0u);
+    }
 }
 
 // The inertia floor (wedge.inertia_floor) with sleeping zones: every free

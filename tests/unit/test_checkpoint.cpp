@@ -181,6 +181,15 @@ TEST(Checkpoint, CorruptTruncatedOtherVersionAndOtherConfigAreRefused) {
               std::string::npos);
     // The thread count is not part of the hash: a run may resume at another.
     EXPECT_EQ(config_hash(parse_config(kWedgeToml, "x.toml", {{"run.threads", "4"}})), hash);
+    // wedge.sleep_buffer_pro at its default, the value of wedge.sleep_buffer,
+    // is left out of the hashed text, as it was before the key existed, so
+    // older runs resume; another value changes the hash.
+    EXPECT_EQ(config_hash(parse_config(kWedgeToml, "x.toml", {{"wedge.sleep_buffer_pro", "2.0"}})), hash);
+    const Config buf1 = parse_config(kWedgeToml, "x.toml", {{"wedge.sleep_buffer", "1.0"}});
+    EXPECT_DOUBLE_EQ(buf1.wedge.sleep_buffer_pro, 1.0);
+    EXPECT_EQ(to_toml_without_defaults(buf1).find("sleep_buffer_pro"), std::string::npos) << to_toml_without_defaults(buf1);
+    EXPECT_NE(to_toml_without_defaults(buf1).find("sleep_buffer = 1.0"), std::string::npos);
+    EXPECT_NE(config_hash(parse_config(kWedgeToml, "x.toml", {{"wedge.sleep_buffer_pro", "1.0"}})), hash);
 
     // None of the refusals touched the target.
     EXPECT_EQ(target.sim.state_hash(), before);

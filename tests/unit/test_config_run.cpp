@@ -90,6 +90,12 @@ TEST(ConfigRun, SleepKeysOfTheWedgeTable) {
     EXPECT_FALSE(c.wedge.sleep);
     EXPECT_DOUBLE_EQ(c.wedge.sleep_tolerance, 0.01);
     EXPECT_DOUBLE_EQ(c.wedge.sleep_buffer, 2.0);
+    EXPECT_DOUBLE_EQ(c.wedge.sleep_buffer_pro, 2.0);
+    // The proside buffer follows sleep_buffer unless it is given.
+    EXPECT_DOUBLE_EQ(parse_config(kWedge + "[wedge]\nsleep_buffer = 3\n", "run.toml", {}).wedge.sleep_buffer_pro, 3.0);
+    const Config own = parse_config(kWedge + "[wedge]\nsleep_buffer = 3\nsleep_buffer_pro = 1\n", "run.toml", {});
+    EXPECT_DOUBLE_EQ(own.wedge.sleep_buffer, 3.0);
+    EXPECT_DOUBLE_EQ(own.wedge.sleep_buffer_pro, 1.0);
     struct Case {
         const char* line;
         const char* why;
@@ -99,6 +105,8 @@ TEST(ConfigRun, SleepKeysOfTheWedgeTable) {
         {"sleep_tolerance = 0", "(0, 1]"},
         {"sleep_tolerance = 2", "(0, 1]"},
         {"sleep_buffer = 0", "(0, 100]"},
+        {"sleep_buffer_pro = 0", "(0, 100]"},
+        {"sleep_buffer_pro = 101", "(0, 100]"},
     };
     for (const Case& k : cases) {
         const std::string msg = refusal_of("[wedge]\n" + std::string(k.line) + "\n");

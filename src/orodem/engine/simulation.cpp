@@ -116,14 +116,17 @@ void Simulation::initialize() {
 
 void Simulation::rebuild_pairs() {
     catch_up_drift();
-    double x_lo = -std::numeric_limits<double>::infinity(), x_hi = std::numeric_limits<double>::infinity();
-    if (params.sleep.enabled && builder_.rebuild_count() > 0) sleep_bounds(x_lo, x_hi);
+    SleepDecision d;  // all awake unless sleeping is on and there was motion to judge
+    if (params.sleep.enabled && builder_.rebuild_count() > 0) {
+        sleep_bounds(d);
+        sleep_decision_ = d;
+    }
     builder_.rebuild(particles, bonds, walls, builder_settings(), contacts, wall_contacts);
     wall_shift_.assign(walls.size(), Vec2{});
     max_disp2_ = 0.0;
     force_rebuild_ = false;
     last_rebuild_step_ = step_count;
-    apply_sleep(x_lo, x_hi);
+    apply_sleep(d.x_lo, d.x_hi);
     index_wall_discs();
     dashpots_stale_ = true;
 }

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -44,7 +45,8 @@ struct SleepParams {
     Vec2 u_left{}, u_right{};      // [m/s]
     bool left = false, right = false;  // which ends may sleep
     double tolerance = 0.0;        // a disc is active when |x - x_rebuild - u t| exceeds this between rebuilds [m]
-    double buffer = 0.0;           // awake margin beyond the outermost active disc [m]
+    double buffer_left = 0.0;      // awake margin left of the leftmost active disc [m]
+    double buffer_right = 0.0;     // awake margin right of the rightmost active disc [m]
 };
 
 struct SimParams {
@@ -135,6 +137,16 @@ public:
     const std::vector<std::uint32_t>& wall_discs(std::size_t w) const { return wall_discs_[w]; }
     /// Discs in the sleeping zones now (engine/sleep.cpp).
     std::size_t sleeping_count() const { return particles.size() - (awake_end_ - awake_begin_); }
+    /// The sleeping zones' last decision (at the last rebuild with sleeping on;
+    /// a diagnostic, not saved in checkpoints): the x extent of the active
+    /// discs and the bounds beyond which discs sleep [m]; ±inf where none.
+    struct SleepDecision {
+        double active_min = std::numeric_limits<double>::infinity();
+        double active_max = -std::numeric_limits<double>::infinity();
+        double x_lo = -std::numeric_limits<double>::infinity();
+        double x_hi = std::numeric_limits<double>::infinity();
+    };
+    const SleepDecision& last_sleep_decision() const { return sleep_decision_; }
     /// Hash of the full dynamic state in id order (x, v, θ, ω, and ξ by key).
     std::uint64_t state_hash() const;
 
@@ -177,7 +189,7 @@ private:
     // Sleeping zones (engine/sleep.cpp): the bounds from the motion since the
     // last rebuild (before it), then flags, inverse masses and the awake
     // slot and pair ranges (after it, in the new slot order).
-    void sleep_bounds(double& x_lo, double& x_hi) const;
+    void sleep_bounds(SleepDecision& d) const;
     void apply_sleep(double x_lo, double x_hi);
     template <bool kUpdateHistory>
     void pair_forces(bool all = true);    // phase A; all = false: the awake pairs only
@@ -211,6 +223,7 @@ private:
     // [pairs_begin_, pairs_end_) evaluated between rebuilds (all of them at a
     // rebuild step and when sleeping is off); the step of the last rebuild.
     std::uint32_t awake_begin_ = 0, awake_end_ = 0;
+    SleepDecision sleep_decision_;  // the last one (diagnostic)
     std::uint32_t pairs_begin_ = 0, pairs_end_ = 0;
     std::uint64_t last_rebuild_step_ = 0;
     // Lazy drift (engine/sleep.cpp): inside advance(), only slots

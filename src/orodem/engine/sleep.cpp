@@ -11,8 +11,9 @@
 //      left of x_split, u_right right of it); a departure above `tolerance`
 //      makes it active. Elastic vibration (sub-micrometre amplitudes) stays
 //      below the tolerance; slip on the base, folding and thrusting do not.
-//   2. the sleeping zones are everything more than `buffer` beyond the
-//      outermost active discs on each side (never across x_split);
+//   2. the sleeping zones are everything more than `buffer_left` left of
+//      the leftmost active disc and `buffer_right` right of the rightmost
+//      (never across x_split);
 //   3. after the rebuild (slots now sorted by x column of cells) each
 //      sleeping zone is a whole number of cell columns, so the awake discs
 //      are one slot range [awake_begin_, awake_end_), and the pairs that can
@@ -50,7 +51,9 @@
 
 namespace orodem {
 
-void Simulation::sleep_bounds(double& x_lo, double& x_hi) const {
+void Simulation::sleep_bounds(SleepDecision& d) const {
+    double& x_lo = d.x_lo;
+    double& x_hi = d.x_hi;
     const SleepParams& sp = params.sleep;
     const ParticleStore& p = particles;
     const std::vector<Vec2>& x_ref = builder_.x_ref();
@@ -72,8 +75,10 @@ void Simulation::sleep_bounds(double& x_lo, double& x_hi) const {
             act_max = std::max(act_max, p.x[i].x);
         }
     }
-    x_lo = sp.left ? std::min(act_min, sp.x_split) - sp.buffer : -inf;
-    x_hi = sp.right ? std::max(act_max, sp.x_split) + sp.buffer : inf;
+    d.active_min = act_min;
+    d.active_max = act_max;
+    x_lo = sp.left ? std::min(act_min, sp.x_split) - sp.buffer_left : -inf;
+    x_hi = sp.right ? std::max(act_max, sp.x_split) + sp.buffer_right : inf;
 }
 
 void Simulation::apply_sleep(double x_lo, double x_hi) {

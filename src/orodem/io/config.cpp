@@ -321,6 +321,7 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
         w.sleep = r.boolean("sleep", w.sleep);
         w.sleep_tolerance = r.number("sleep_tolerance", w.sleep_tolerance, {0.0, 1.0, true, false});
         w.sleep_buffer = r.number("sleep_buffer", w.sleep_buffer, {0.0, 100.0, true, false});
+        w.sleep_buffer_pro = r.number("sleep_buffer_pro", w.sleep_buffer, {0.0, 100.0, true, false});
         w.inertia_floor = r.number("inertia_floor", w.inertia_floor, {1.0, 10.0, false, false});
         if (w.inertia_floor != 1.0 && w.base_law == "traction")
             r.refuse("inertia_floor", "applies under the Coulomb base only (the eq. 5 traction's gains and its eq. 6 "

@@ -52,6 +52,8 @@ struct WedgeConfig {
     bool sleep = false;               // sleeping zones: rigidly moving material skips force work (engine/sleep.cpp)
     double sleep_tolerance = 0.01;    // departure from rigid motion between rebuilds that keeps a disc awake [r_min]
     double sleep_buffer = 2.0;        // awake margin beyond the outermost deforming disc [h0]
+    double sleep_buffer_pro = 2.0;    // the same margin on the proside (the incoming plate, left of the S point)
+                                      // [h0]; when the key is absent, sleep_buffer
     double inertia_floor = 1.0;       // discs smaller than inertia_floor·r_min move with the mass and moment of
                                       // inertia of a disc of that radius (their weight stays ρ π R² g), and the
                                       // automatic dt follows the lightest inertia; 1 = off (docs/physics.md) [-]

@@ -84,6 +84,14 @@ std::string to_toml_without_defaults(const Config& c) {
         if (c.legacy_base_law)
             defaults += fmt::format("[{}]\nbase_law = \"traction\"\n", is_calibration(c) ? "calibrate" : "wedge");
         const Config d = parse_config(defaults, "defaults");
+        // wedge.sleep_buffer_pro defaults to wedge.sleep_buffer: at that value
+        // it is left out, so that the hash of a run made before the key
+        // existed (with any sleep_buffer) stays what it was.
+        if (toml::table* w = n.resolved["wedge"].as_table()) {
+            const toml::node* pro = w->get("sleep_buffer_pro");
+            const toml::node* both = w->get("sleep_buffer");
+            if (pro && both && scalar_text(*pro) == scalar_text(*both)) w->erase("sleep_buffer_pro");
+        }
         drop_equal(n.resolved, d.resolved);
     } catch (const ConfigError&) {
         // An experiment without a valid all-defaults config keeps every key.

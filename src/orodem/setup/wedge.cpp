@@ -191,7 +191,8 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer, const RunNumb
     sp.left = true;
     sp.right = !backstop;
     sp.tolerance = w.sleep_tolerance * c.packing.r_min;
-    sp.buffer = w.sleep_buffer * h0;
+    sp.buffer_left = w.sleep_buffer_pro * h0;  // the incoming plate
+    sp.buffer_right = w.sleep_buffer * h0;     // the retroside
 
     std::unique_ptr<BasalBoundary> base;
     if (w.base_law == "traction")

@@ -52,17 +52,13 @@
 namespace orodem {
 
 void Simulation::sleep_bounds(SleepDecision& d) const {
-    double& x_lo = d.x_lo;
-    double& x_hi = d.x_hi;
     const SleepParams& sp = params.sleep;
     const ParticleStore& p = particles;
     const std::vector<Vec2>& x_ref = builder_.x_ref();
     const double elapsed = static_cast<double>(step_count - last_rebuild_step_) * params.dt;
     const double inf = std::numeric_limits<double>::infinity();
     if (x_ref.size() != p.size() || elapsed <= 0.0) {
-        // No motion to judge (a rebuild forced right after another): all awake.
-        x_lo = -inf;
-        x_hi = inf;
+        d = SleepDecision{};  // no motion to judge (a rebuild forced right after another): all awake
         return;
     }
     double act_min = inf, act_max = -inf;
@@ -77,8 +73,8 @@ void Simulation::sleep_bounds(SleepDecision& d) const {
     }
     d.active_min = act_min;
     d.active_max = act_max;
-    x_lo = sp.left ? std::min(act_min, sp.x_split) - sp.buffer_left : -inf;
-    x_hi = sp.right ? std::max(act_max, sp.x_split) + sp.buffer_right : inf;
+    d.x_lo = sp.left ? std::min(act_min, sp.x_split) - sp.buffer_left : -inf;
+    d.x_hi = sp.right ? std::max(act_max, sp.x_split) + sp.buffer_right : inf;
 }
 
 void Simulation::apply_sleep(double x_lo, double x_hi) {

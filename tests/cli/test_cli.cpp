@@ -246,7 +246,7 @@ TEST_F(Cli, CheckEstimatesTheWorkOfAWedgeRunFromItsStepsDiscsAndSleeping) {
     EXPECT_NEAR(std::stod(on.out.substr(open)), steps * discs * 0.8 * 0.45, 2e-3 * steps * discs);
     EXPECT_HAS(on.out, "awake disc-steps)");
     const std::size_t open_off = off.out.find('(', off.out.find("steps to S = 8")) + 1;
-    EXPECT_NEAR(std::stod(off.out.substr(open_off)), steps * discs * 0.8, 2e-3 * steps * discs);
+    EXPECT_NEAR(std::stod(off.out.substr(open_off)), steps * discs * 0.8, 5e-3 * steps * discs);  // printed to 3 digits
     EXPECT_EQ(off.out.find("awake"), std::string::npos) << off.out;
     EXPECT_HAS(on.out, "estimated run time     = ");
 }
@@ -312,7 +312,7 @@ TEST_F(Cli, CheckGivesTheBasalDragAtFullSlipInColumnWeights) {
     // g_d m v'/dt for a disc of the mean radius R over rho g h0 2R:
     // pi g_d R v' / (2 g h0 dt), here 0.2 pi 0.75 0.1 / (2 9.81 55 dt).
     const std::string cfg = quote((fs::path(ORODEM_SOURCE_DIR) / "configs" / "exp1.toml").string());
-    const std::string traction = " --set wedge.base_law='\"traction\"' --set wedge.v=0.1";
+    const std::string traction = " --set wedge.base_law='\"traction\"' --set wedge.v=0.1 --set wedge.inertia_floor=1";
     const Result on = orodem("check " + cfg + traction + " --set wedge.drag_gain=0.2"),
                  off = orodem("check " + cfg + traction);
     ASSERT_EQ(on.status, 0) << on.err;

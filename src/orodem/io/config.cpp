@@ -325,8 +325,8 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
         w.inertia_floor = r.number("inertia_floor", w.inertia_floor, {1.0, 10.0, false, false});
         if (w.inertia_floor != 1.0 && w.base_law == "traction")
             r.refuse("inertia_floor", "applies under the Coulomb base only (the eq. 5 traction's gains and its eq. 6 "
-                                      "bound are per unit of a disc's own mass); remove it or set wedge.base_law = "
-                                      "\"coulomb\"");
+                                      "bound are per unit of a disc's own mass); set wedge.inertia_floor = 1 (on the command "
+                                      "line: --set wedge.inertia_floor=1) or wedge.base_law = \"coulomb\"");
         r.finish();
     } else if (const toml::node* n = root.get("wedge")) {
         throw ConfigError(fmt::format("{}: table [wedge] is only read by the wedge experiments, not run.experiment = \"{}\"; "

@@ -14,7 +14,9 @@
 //                    settling, its cache key) does not change.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 
 #include "orodem/io/config.hpp"
 #include "orodem/io/packing_file.hpp"
@@ -116,6 +118,29 @@ TEST(InertiaFloor, ACollisionKeepsItsRestitutionAndLastsLongerByTheRatioOfTheIne
         contact_time[floored] = t_sep - t_touch;
     }
     EXPECT_NEAR(contact_time[1] / contact_time[0], std::sqrt(m_f / m), 1e-3 * std::sqrt(m_f / m));
+}
+
+TEST(InertiaFloor, TheMeanInertialMassRatioMatchesAnIntegralOverTheRadii) {
+    const std::string text = "[run]\nexperiment = \"exp1\"\n[packing]\nr_min = 0.5\nr_max = 1.0\nh0 = 10.0\n[wedge]\n";
+    // Midpoint rule over R uniform in [0.5, 1] m, 2e5 cells: error about 1e-11.
+    const auto integral = [](double f_r) {
+        const int n = 200000;
+        double own = 0.0, floored = 0.0;
+        for (int k = 0; k < n; ++k) {
+            const double r = 0.5 + 0.5 * (k + 0.5) / n;
+            own += r * r;
+            floored += std::max(r, f_r) * std::max(r, f_r);
+        }
+        return floored / own;
+    };
+    EXPECT_EQ(inertia_floor_mean_mass_ratio(parse_config(text, "run.toml", {})), 1.0);
+    for (const double f : {1.2, 1.5, 2.0, 3.0}) {
+        const Config c = parse_config(text + fmt::format("inertia_floor = {}\n", f), "run.toml", {});
+        EXPECT_NEAR(inertia_floor_mean_mass_ratio(c), integral(std::min(f * 0.5, 1.0)), 1e-9) << f;
+    }
+    // f = 2: every disc moves as the largest, R² = 1 against the mean 7/12.
+    const Config two = parse_config(text + "inertia_floor = 2\n", "run.toml", {});
+    EXPECT_NEAR(inertia_floor_mean_mass_ratio(two), 12.0 / 7.0, 1e-12);
 }
 
 TEST(InertiaFloor, TheWedgeSetupFloorsTheLightDiscsAndStretchesTheTimestep) {

@@ -55,6 +55,16 @@ double inertia_floor_mass(const Config& c) {
     return c.material.density * std::numbers::pi * r * r;
 }
 
+double inertia_floor_mean_mass_ratio(const Config& c) {
+    const double a = c.packing.r_min, b = c.packing.r_max;  // [m]
+    const double f_r = std::min(c.wedge.inertia_floor * a, b);  // the floor's radius F [m]
+    if (inertia_floor_mass(c) == 0.0 || c.packing.kind == "hexagonal" || !(b > a) || !(f_r > a)) return 1.0;
+    // (b - a) E[R²] and (b - a) E[max(R², F²)] for R uniform in [a, b].
+    const double own = (b * b * b - a * a * a) / 3.0;
+    const double floored = f_r * f_r * (f_r - a) + (b * b * b - f_r * f_r * f_r) / 3.0;
+    return floored / own;
+}
+
 double lightest_inertial_mass(const Config& c) { return std::max(lightest_mass(c), inertia_floor_mass(c)); }
 
 TimestepInfo timestep_for(const Config& c, bool with_floor) {

@@ -23,6 +23,13 @@ double lightest_mass(const Config& c);
 /// floor is off (inertia_floor = 1) and for every other experiment.
 double inertia_floor_mass(const Config& c);
 
+/// The layer's mean inertial mass over its mean own mass under the inertia
+/// floor, E[max(R², F²)] / E[R²] for radii uniform in [r_min, r_max] (the
+/// disc and cluster packings) and F = inertia_floor r_min [-]; 1 when the
+/// floor is off or no disc is below it (hexagonal: all discs are r_max).
+/// The mean inertial number grows by its square root (orodem check).
+double inertia_floor_mean_mass_ratio(const Config& c);
+
 /// The lightest mass a disc moves with: max(lightest_mass, inertia_floor_mass) [kg].
 double lightest_inertial_mass(const Config& c);
 

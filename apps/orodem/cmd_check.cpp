@@ -106,14 +106,15 @@ int cmd_check(const CommonArgs& a) {
         fmt::print("inertial number I      = {:.3g} (v'/h0 (r_min + r_max) sqrt(rho / (rho g h0)); quasi-static "
                    "below 1e-3)\n",
                    numbers.inertial_number);
-        if (const double m_f = inertia_floor_mass(c); m_f > 0.0)
+        if (const double m_f = inertia_floor_mass(c); m_f > 0.0) {
+            const double mean_ratio = inertia_floor_mean_mass_ratio(c);  // [-]
             fmt::print("inertia floor          = {:g} r_min (discs below {:g} m move with the mass and moment of inertia "
                        "of a {:g} m disc, {:.4g} kg, and keep their own weight; their I is up to {:g} times the above; "
                        "the layer's mean inertial mass is {:.3g} times its own, its I about {:.3g})\n",
                        c.wedge.inertia_floor, c.wedge.inertia_floor * c.packing.r_min,
                        c.wedge.inertia_floor * c.packing.r_min, m_f, c.wedge.inertia_floor,
-                       inertia_floor_mean_mass_ratio(c),
-                       numbers.inertial_number * std::sqrt(inertia_floor_mean_mass_ratio(c)));
+                       mean_ratio, numbers.inertial_number * std::sqrt(mean_ratio));
+        }
         const PlateEstimate& pe = numbers.plate;
         fmt::print("plate beyond s_max     = {:g} h0 (wedge.pro_margin); the deformation front reaches about {:.1f} h0 "
                    "from the S point by S = {:g} (critical taper {:.2f} deg for phi = {:.1f} deg, phi_b = {:.1f} deg), "

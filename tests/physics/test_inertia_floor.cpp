@@ -120,8 +120,12 @@ TEST(InertiaFloor, ACollisionKeepsItsRestitutionAndLastsLongerByTheRatioOfTheIne
     EXPECT_NEAR(contact_time[1] / contact_time[0], std::sqrt(m_f / m), 1e-3 * std::sqrt(m_f / m));
 }
 
+// A wedge config with radii in [0.5, 1] m: the floor's tests.
+const std::string kWedgeLayer =
+    "[run]\nexperiment = \"exp1\"\n[packing]\nr_min = 0.5\nr_max = 1.0\nh0 = 10.0\n[wedge]\n";
+
 TEST(InertiaFloor, TheMeanInertialMassRatioMatchesAnIntegralOverTheRadii) {
-    const std::string text = "[run]\nexperiment = \"exp1\"\n[packing]\nr_min = 0.5\nr_max = 1.0\nh0 = 10.0\n[wedge]\n";
+    const std::string text = kWedgeLayer;
     // Midpoint rule over R uniform in [0.5, 1] m, 2e5 cells: error about 1e-11.
     const auto integral = [](double f_r) {
         const int n = 200000;
@@ -144,7 +148,7 @@ TEST(InertiaFloor, TheMeanInertialMassRatioMatchesAnIntegralOverTheRadii) {
 }
 
 TEST(InertiaFloor, TheWedgeSetupFloorsTheLightDiscsAndStretchesTheTimestep) {
-    const std::string text = "[run]\nexperiment = \"exp1\"\n[packing]\nr_min = 0.5\nr_max = 1.0\nh0 = 10.0\n[wedge]\n";
+    const std::string text = kWedgeLayer;
     const Config off = parse_config(text, "run.toml", {});
     const Config on = parse_config(text + "inertia_floor = 1.5\n", "run.toml", {});
     const double m_f = disc_mass(kRf);

@@ -133,7 +133,9 @@ TEST(PairKernel, BitIdenticalToThePerPairLoop) {
                 std::vector<double> gn(n), gs(n);
                 pair_dashpots(law, s.p.mass.data(), s.p.inv_mass.data(), 0.0, got.i.data(), got.j.data(), 0, n, gn.data(),
                               gs.data());
-                const PairKernelData kd{s.p.x.data(),  s.p.v.data(),      s.p.omega.data(), s.p.radius.data(),
+                std::vector<double> ri(n), rj(n);
+                pair_radii(s.p.radius.data(), got.i.data(), got.j.data(), 0, n, ri.data(), rj.data());
+                const PairKernelData kd{s.p.x.data(),  s.p.v.data(),      s.p.omega.data(), ri.data(), rj.data(),
                                         got.i.data(),  got.j.data(),      got.shift.data(), got.bonded.data(),
                                         gn.data(),     gs.data(),         got.xi.data(),    got.f.data(),
                                         got.c.data(),  s.W,               dt,               law,
@@ -161,7 +163,9 @@ TEST(PairKernel, GatherBitIdenticalToThePlainSums) {
         std::vector<double> gn(m), gs(m);
         pair_dashpots(law, s.p.mass.data(), s.p.inv_mass.data(), 0.0, s.cs.i.data(), s.cs.j.data(), 0, m, gn.data(),
                       gs.data());
-        const PairKernelData kd{s.p.x.data(),   s.p.v.data(),       s.p.omega.data(), s.p.radius.data(),
+        std::vector<double> ri(m), rj(m);
+        pair_radii(s.p.radius.data(), s.cs.i.data(), s.cs.j.data(), 0, m, ri.data(), rj.data());
+        const PairKernelData kd{s.p.x.data(),   s.p.v.data(),       s.p.omega.data(), ri.data(), rj.data(),
                                 s.cs.i.data(),  s.cs.j.data(),      s.cs.shift.data(), s.cs.bonded.data(),
                                 gn.data(),      gs.data(),          s.cs.xi.data(),   s.cs.f.data(),
                                 s.cs.c.data(),  s.W,                dt,               law,

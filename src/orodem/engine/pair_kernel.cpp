@@ -9,14 +9,16 @@
 // Cost model (30,000-disc pile, docs/benchmarks.md "Profile"): phase A is
 // bound by its instruction count, neither by memory nor by the latency of a
 // block's chain (two passes per chunk and two interleaved blocks gained
-// nothing). About 56 instructions a pair (61 in the AVX2 version): a fifth
+// nothing). About 50 instructions a pair in the AVX-512 version: a fifth
 // scalar index work, two fifths loads, shuffles and stores, a third
 // arithmetic and selects. Hence four lanes (wider vectors and hardware
 // gathers only add work), contiguous loads and stores of the pair columns,
 // each disc index held as one byte offset that addresses both column widths
-// (opaque), the sliding branch skipped when no lane of a block slides (about
-// nine blocks in ten), and the pair dashpots (m_eff) computed when the pairs
-// or the masses change, not every step (pair_dashpots).
+// (opaque), x and v into lanes by in-lane unpacks (gather_vec2_off), ω built
+// in vector registers at once (lanes_now), the sliding branch skipped when no
+// lane of a block slides (about nine blocks in ten), and what changes only
+// with the pairs or the masses as pair columns computed then, not every
+// step: the dashpots (m_eff; pair_dashpots) and the radii (pair_radii).
 #include "orodem/engine/pair_kernel.hpp"
 
 #include <string_view>
@@ -71,13 +73,25 @@ struct Out {
 }
 
 /// Lanes l of {x, y} columns from a Vec2 array at four byte offsets of a
-/// double column (see opaque).
+/// double column (see opaque). The halves pair lanes 0 and 2, 1 and 3, so
+/// that x and y are two in-lane unpacks (unpcklpd, unpckhpd) of them rather
+/// than two cross-lane permutes, each with a register copy.
 [[gnu::always_inline]] inline void gather_vec2_off(const Vec2* a, const std::size_t* off, vd& xs, vd& ys) {
     const char* base = reinterpret_cast<const char*>(a);
-    const vd lo = cat(simd::load<v2d>(base + 2 * off[0]), simd::load<v2d>(base + 2 * off[1]));
-    const vd hi = cat(simd::load<v2d>(base + 2 * off[2]), simd::load<v2d>(base + 2 * off[3]));
-    xs = even(lo, hi);
-    ys = odd(lo, hi);
+    const vd lo = cat(simd::load<v2d>(base + 2 * off[0]), simd::load<v2d>(base + 2 * off[2]));
+    const vd hi = cat(simd::load<v2d>(base + 2 * off[1]), simd::load<v2d>(base + 2 * off[3]));
+    xs = __builtin_shufflevector(lo, hi, 0, 4, 2, 6);
+    ys = __builtin_shufflevector(lo, hi, 1, 5, 3, 7);
+}
+
+/// {f(0), f(1), f(2), f(3)}, built in vector registers here. Left to itself
+/// GCC sinks the loads of ω (used only in the tangential part) into general
+/// registers and spills them, then moves them across one by one.
+template <class F>
+[[gnu::always_inline]] inline vd lanes_now(F&& f) {
+    v2d lo = {f(0), f(1)}, hi = {f(2), f(3)};
+    asm("" : "+x"(lo), "+x"(hi));
+    return cat(lo, hi);
 }
 
 /// Loads a block; `K` are the pair indices of the lanes.
@@ -92,10 +106,8 @@ struct Out {
     gather_vec2_off(d.x, J, b.xjx, b.xjy);
     gather_vec2_off(d.v, I, b.vix, b.viy);
     gather_vec2_off(d.v, J, b.vjx, b.vjy);
-    b.ri = lanes([&](std::size_t l) { return at_off(d.radius, I[l]); });
-    b.rj = lanes([&](std::size_t l) { return at_off(d.radius, J[l]); });
-    b.wi = lanes([&](std::size_t l) { return at_off(d.omega, I[l]); });
-    b.wj = lanes([&](std::size_t l) { return at_off(d.omega, J[l]); });
+    b.wi = lanes_now([&](std::size_t l) { return at_off(d.omega, I[l]); });
+    b.wj = lanes_now([&](std::size_t l) { return at_off(d.omega, J[l]); });
     // Periodic images and bonds are rare in a block (all four bytes zero): then
     // skip the byte-to-double conversions.
     std::uint32_t shift4 = 1, bonded4 = 1;
@@ -111,12 +123,16 @@ struct Out {
         b.xi_y = odd(a, c);
         b.gamma_n = simd::load<vd>(d.gamma_n + K[0]);
         b.gamma_s = simd::load<vd>(d.gamma_s + K[0]);
+        b.ri = simd::load<vd>(d.r_i + K[0]);
+        b.rj = simd::load<vd>(d.r_j + K[0]);
     } else {
         std::size_t KO[kLanes];  // the pairs' byte offsets into a double column
         for (std::size_t l = 0; l < kLanes; ++l) KO[l] = K[l] * sizeof(double);
         gather_vec2_off(d.xi, KO, b.xi_x, b.xi_y);
         b.gamma_n = lanes([&](std::size_t l) { return d.gamma_n[K[l]]; });
         b.gamma_s = lanes([&](std::size_t l) { return d.gamma_s[K[l]]; });
+        b.ri = lanes([&](std::size_t l) { return d.r_i[K[l]]; });
+        b.rj = lanes([&](std::size_t l) { return d.r_j[K[l]]; });
     }
     return b;
 }
@@ -419,6 +435,14 @@ void pair_dashpots(const LawParams& law, const double* mass, const double* inv_m
         if (law.damp_sqrt_s != 0.0) gs += law.damp_sqrt_s * std::sqrt(m_eff);
         gamma_n[k] = gn;
         gamma_s[k] = gs;
+    }
+}
+
+void pair_radii(const double* radius, const std::uint32_t* i, const std::uint32_t* j, std::size_t begin,
+                std::size_t end, double* r_i, double* r_j) {
+    for (std::size_t k = begin; k < end; ++k) {
+        r_i[k] = radius[i[k]];
+        r_j[k] = radius[j[k]];
     }
 }
 

@@ -39,8 +39,9 @@ struct PairKernelData {
     const Vec2* x;
     const Vec2* v;
     const double* omega;
-    const double* radius;
     // pairs
+    const double* r_i;  // R of the pair's disc i [m] (pair_radii)
+    const double* r_j;  // R of disc j [m]
     const std::uint32_t* i;
     const std::uint32_t* j;
     const std::int8_t* shift;
@@ -67,6 +68,12 @@ struct PairKernelData {
 void pair_dashpots(const LawParams& law, const double* mass, const double* inv_mass, double m_inertia_min,
                    const std::uint32_t* i, const std::uint32_t* j, std::size_t begin, std::size_t end,
                    double* gamma_n, double* gamma_s);
+
+/// The radii of pairs [begin, end)'s discs as pair columns: phase A loads
+/// four pairs' R_i and R_j as two vectors instead of eight scalars. They
+/// change only with the pair list.
+void pair_radii(const double* radius, const std::uint32_t* i, const std::uint32_t* j, std::size_t begin,
+                std::size_t end, double* r_i, double* r_j);
 
 /// The instruction-set versions of the kernels.
 enum class KernelIsa { sse2, avx2, avx512 };

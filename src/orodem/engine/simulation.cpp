@@ -174,12 +174,15 @@ void Simulation::refresh_dashpots() {
     const std::size_t npairs = cs.size();
     pair_gamma_n_.resize(npairs);  // allocates only when the pair list outgrows every earlier one
     pair_gamma_s_.resize(npairs);
+    pair_r_i_.resize(npairs);
+    pair_r_j_.resize(npairs);
 #pragma omp parallel if(static_cast<long long>(npairs) >= kParallelMin)
     {
         const auto [b, e] = thread_range(npairs, 64);
         if (b < e)
             pair_dashpots(params.law, p.mass.data(), p.inv_mass.data(), params.m_inertia_min, cs.i.data(), cs.j.data(), b, e,
                           pair_gamma_n_.data(), pair_gamma_s_.data());
+        if (b < e) pair_radii(p.radius.data(), cs.i.data(), cs.j.data(), b, e, pair_r_i_.data(), pair_r_j_.data());
     }
     dashpots_stale_ = false;
     dashpots_epoch_ = p.inertia_epoch;
@@ -190,7 +193,7 @@ PairKernelData Simulation::pair_kernel_data(bool update_history) {
     ContactStore& cs = contacts;
     if (dashpots_stale_ || dashpots_epoch_ != p.inertia_epoch || pair_gamma_n_.size() != cs.size())
         refresh_dashpots();
-    return {p.x.data(),      p.v.data(),           p.omega.data(),        p.radius.data(), cs.i.data(),
+    return {p.x.data(),      p.v.data(),           p.omega.data(),        pair_r_i_.data(), pair_r_j_.data(), cs.i.data(),
             cs.j.data(),     cs.shift.data(),      cs.bonded.data(),      pair_gamma_n_.data(),
             pair_gamma_s_.data(), cs.xi.data(),    cs.f.data(),           cs.c.data(),     params.period_x,
             params.dt,       params.law,           update_history};

@@ -240,6 +240,7 @@ private:
     // list of the last rebuild and the inverse masses of inertia_epoch
     // dashpots_epoch_; refreshed by pair_kernel_data() when either changed.
     std::vector<double> pair_gamma_n_, pair_gamma_s_;
+    std::vector<double> pair_r_i_, pair_r_j_;  // the pairs' radii R_i, R_j [m] (pair_radii), refreshed with them
     bool dashpots_stale_ = true;       // set by a rebuild or a restore
     std::uint64_t dashpots_epoch_ = 0;
     void refresh_dashpots();

@@ -179,10 +179,11 @@ void Simulation::refresh_dashpots() {
 #pragma omp parallel if(static_cast<long long>(npairs) >= kParallelMin)
     {
         const auto [b, e] = thread_range(npairs, 64);
-        if (b < e)
+        if (b < e) {
             pair_dashpots(params.law, p.mass.data(), p.inv_mass.data(), params.m_inertia_min, cs.i.data(), cs.j.data(), b, e,
                           pair_gamma_n_.data(), pair_gamma_s_.data());
-        if (b < e) pair_radii(p.radius.data(), cs.i.data(), cs.j.data(), b, e, pair_r_i_.data(), pair_r_j_.data());
+            pair_radii(p.radius.data(), cs.i.data(), cs.j.data(), b, e, pair_r_i_.data(), pair_r_j_.data());
+        }
     }
     dashpots_stale_ = false;
     dashpots_epoch_ = p.inertia_epoch;

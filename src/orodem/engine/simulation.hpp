@@ -236,11 +236,12 @@ private:
     bool defer_drift_ = false;        // set by advance() while it steps
     void set_drift_range();           // from the awake and pair ranges
     void catch_up_drift();            // x += lag dt v, θ += lag dt ω outside the drift range
-    // Per-pair dashpots γ_n, γ_s [N s/m] (pair_dashpots), valid for the pair
-    // list of the last rebuild and the inverse masses of inertia_epoch
-    // dashpots_epoch_; refreshed by pair_kernel_data() when either changed.
+    // Per-pair dashpots γ_n, γ_s [N s/m] (pair_dashpots) and radii R_i, R_j
+    // [m] (pair_radii), valid for the pair list of the last rebuild and the
+    // inverse masses of inertia_epoch dashpots_epoch_; refreshed by
+    // pair_kernel_data() when either changed.
     std::vector<double> pair_gamma_n_, pair_gamma_s_;
-    std::vector<double> pair_r_i_, pair_r_j_;  // the pairs' radii R_i, R_j [m] (pair_radii), refreshed with them
+    std::vector<double> pair_r_i_, pair_r_j_;
     bool dashpots_stale_ = true;       // set by a rebuild or a restore
     std::uint64_t dashpots_epoch_ = 0;
     void refresh_dashpots();

@@ -28,6 +28,7 @@
 #include "orodem/core/error.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "orodem/core/simd.hpp"
 #include "orodem/neighbor/pair_builder.hpp"
@@ -229,6 +230,35 @@ template <class F>
     }
 }
 
+/// The wall contacts of disc i, evaluated and added to f and t in order.
+[[gnu::always_inline]] inline void wall_contacts(const GatherData& d, std::size_t i, Vec2& f, double& t) {
+    const double ri = d.radius[i];
+    for (std::uint32_t k = d.wall_begin[i]; k < d.wall_begin[i + 1]; ++k) {
+        const Wall& w = d.walls[d.wall[k]];
+        Vec2 cp;
+        const bool over = wall_contact_point(w, d.x[i], cp);
+        const Vec2 dx = d.x[i] - cp;
+        const double r2 = norm2(dx);
+        if (!over || r2 >= ri * ri) {
+            d.wall_xi[k] = {};
+            d.wall_f[k] = {};
+            d.wall_c[k] = 0.0;
+            continue;
+        }
+        const double dist = std::sqrt(r2);
+        const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
+        const Vec2 v_wall = w.velocity + w.surface_speed * u;
+        const PairKinematics kin{(1.0 / dist) * dx, ri - dist, d.v[i] - v_wall, ri * d.omega[i], std::max(d.mass[i], d.m_inertia_min)};
+        Vec2 xi = d.wall_xi[k];
+        const PairForce pf = eval_contact<false>(d.wall_law[d.wall[k]], kin, d.dt, xi);
+        if (d.update_history) d.wall_xi[k] = xi;
+        d.wall_f[k] = pf.f;
+        d.wall_c[k] = pf.c;
+        f += pf.f;
+        t -= ri * pf.c;
+    }
+}
+
 /// Phase B for one disc.
 [[gnu::always_inline]] inline void gather_disc(const GatherData& d, std::size_t i) {
     // f = m g, then f += f_k over the owned pairs and f -= f_k over the
@@ -282,30 +312,7 @@ template <class F>
         acc = v2d{f.x, f.y};
     }
     Vec2 f = {acc[0], acc[1]};
-    for (std::uint32_t k = d.wall_begin[i]; k < d.wall_begin[i + 1]; ++k) {
-        const Wall& w = d.walls[d.wall[k]];
-        Vec2 cp;
-        const bool over = wall_contact_point(w, d.x[i], cp);
-        const Vec2 dx = d.x[i] - cp;
-        const double r2 = norm2(dx);
-        if (!over || r2 >= ri * ri) {
-            d.wall_xi[k] = {};
-            d.wall_f[k] = {};
-            d.wall_c[k] = 0.0;
-            continue;
-        }
-        const double dist = std::sqrt(r2);
-        const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
-        const Vec2 v_wall = w.velocity + w.surface_speed * u;
-        const PairKinematics kin{(1.0 / dist) * dx, ri - dist, d.v[i] - v_wall, ri * d.omega[i], std::max(d.mass[i], d.m_inertia_min)};
-        Vec2 xi = d.wall_xi[k];
-        const PairForce pf = eval_contact<false>(d.wall_law[d.wall[k]], kin, d.dt, xi);
-        if (d.update_history) d.wall_xi[k] = xi;
-        d.wall_f[k] = pf.f;
-        d.wall_c[k] = pf.c;
-        f += pf.f;
-        t -= ri * pf.c;
-    }
+    wall_contacts(d, i, f, t);
     d.force[i] = f;
     d.torque[i] = t;
     if (d.kick) {
@@ -316,9 +323,138 @@ template <class F>
     }
 }
 
+/// The half kick of four discs (Simulation::kick()'s operations): v and F
+/// as the interleaved {x, y} of two discs a vector (f01, f23), the rest a
+/// disc per lane; returns the new velocities the same way.
+[[gnu::always_inline]] inline std::pair<vd, vd> kick_quad(Vec2* v, double* omega, const double* inv_mass,
+                                                          const double* inv_inertia, vd f01, vd f23, vd t,
+                                                          double half) {
+    const vd a = half * simd::load<vd>(inv_mass);
+    const vd a01 = __builtin_shufflevector(a, a, 0, 0, 1, 1), a23 = __builtin_shufflevector(a, a, 2, 2, 3, 3);
+    const vd v01 = simd::load<vd>(v) + a01 * f01, v23 = simd::load<vd>(v + 2) + a23 * f23;
+    simd::store(v, v01);
+    simd::store(v + 2, v23);
+    simd::store(omega, simd::load<vd>(omega) + half * simd::load<vd>(inv_inertia) * t);
+    return {v01, v23};
+}
+
+/// Phase B for the four discs i0 .. i0 + 3, a disc per lane: the same
+/// operations, in the same order, as gather_disc() for each (gravity, the
+/// owned pairs, the incoming pairs, the walls, the kick), so the results
+/// are the same bit for bit. Lanes save what a disc at a time spends moving
+/// scalars: the torque's serial sums take no lane extractions, the counts,
+/// masses and the kick's columns load as vectors, and a slot's mask is one
+/// compare for four discs.
+[[gnu::always_inline]] inline void gather_quad(const GatherData& d, std::size_t i0) {
+    const std::uint32_t* ob = d.begin + i0;
+    const std::uint32_t* ib = d.in_begin + i0;
+    // Slots past a disc's own pairs load a valid pair (then masked): the
+    // last discs, whose four slots could run past the end, go one by one.
+    if (ob[3] + 4 > d.npairs || ib[3] + 4 > d.npairs) {
+        for (std::size_t l = 0; l < kLanes; ++l) gather_disc(d, i0 + l);
+        return;
+    }
+    using v4i = std::int32_t __attribute__((vector_size(16)));
+    using v2l = long long __attribute__((vector_size(16)));
+    // The counts (0 to a few dozen: int32 and double hold them exactly).
+    const v4i on_i = simd::load<v4i>(ob + 1) - simd::load<v4i>(ob);
+    const v4i in_i = simd::load<v4i>(ib + 1) - simd::load<v4i>(ib);
+    const vd on = __builtin_convertvector(on_i, vd), in = __builtin_convertvector(in_i, vd);
+    const vd ri = simd::load<vd>(d.radius + i0);
+    const vd m = simd::load<vd>(d.mass + i0);
+    vd fx = m * d.gravity.x, fy = m * d.gravity.y;
+    vd t{};
+    const vd minus0 = {-0.0, -0.0, -0.0, -0.0};
+    std::size_t OO[kLanes];  // the owned pairs' byte offsets into a double column
+    for (std::size_t l = 0; l < kLanes; ++l) OO[l] = opaque(std::size_t{ob[l]} * sizeof(double));
+    // Owned slots 0-3: c of a disc's four slots is one load; a 4 × 4
+    // transpose turns the four discs' rows into the slots' lanes.
+    vd oc[4];
+    {
+        const vd c0 = simd::load<vd>(reinterpret_cast<const char*>(d.c) + OO[0]);
+        const vd c1 = simd::load<vd>(reinterpret_cast<const char*>(d.c) + OO[1]);
+        const vd c2 = simd::load<vd>(reinterpret_cast<const char*>(d.c) + OO[2]);
+        const vd c3 = simd::load<vd>(reinterpret_cast<const char*>(d.c) + OO[3]);
+        const vd lo01 = __builtin_shufflevector(c0, c1, 0, 4, 2, 6), hi01 = __builtin_shufflevector(c0, c1, 1, 5, 3, 7);
+        const vd lo23 = __builtin_shufflevector(c2, c3, 0, 4, 2, 6), hi23 = __builtin_shufflevector(c2, c3, 1, 5, 3, 7);
+        oc[0] = __builtin_shufflevector(lo01, lo23, 0, 1, 4, 5);
+        oc[1] = __builtin_shufflevector(hi01, hi23, 0, 1, 4, 5);
+        oc[2] = __builtin_shufflevector(lo01, lo23, 2, 3, 6, 7);
+        oc[3] = __builtin_shufflevector(hi01, hi23, 2, 3, 6, 7);
+    }
+    const auto owned = [&](std::size_t s, const std::size_t* off, vd gc) {
+        vd gx, gy;
+        gather_vec2_off(d.f, off, gx, gy);
+        const vm use = (vd{} + static_cast<double>(s)) < on;
+        fx += use ? gx : minus0;  // x + -0.0 == x for every x
+        fy += use ? gy : minus0;
+        t -= ri * (use ? gc : vd{});
+    };
+    const auto incoming = [&](std::size_t s, const std::size_t* off) {
+        vd gx, gy;
+        gather_vec2_off(d.f, off, gx, gy);
+        const vd gc = lanes([&](std::size_t l) { return at_off(d.c, off[l]); });
+        const vm use = (vd{} + static_cast<double>(s)) < in;
+        fx -= use ? gx : vd{};  // x - +0.0 == x for every x
+        fy -= use ? gy : vd{};
+        t -= ri * (use ? gc : vd{});
+    };
+    for (std::size_t s = 0; s < 4; ++s) {
+        const std::size_t off[kLanes] = {OO[0] + 8 * s, OO[1] + 8 * s, OO[2] + 8 * s, OO[3] + 8 * s};
+        owned(s, off, oc[s]);
+    }
+    // More than four of either (about one disc in a hundred): the further
+    // slots, a lane past its count reading its first (masked).
+    const v4i big = (on_i > 4) | (in_i > 4);
+    const v2l big2 = reinterpret_cast<v2l>(big);
+    const bool more = (big2[0] | big2[1]) != 0;
+    if (more) [[unlikely]] {
+        const std::int32_t on_max = std::max(std::max(on_i[0], on_i[1]), std::max(on_i[2], on_i[3]));
+        for (std::int32_t s = 4; s < on_max; ++s) {
+            std::size_t off[kLanes];
+            for (std::size_t l = 0; l < kLanes; ++l) off[l] = s < on_i[l] ? OO[l] + 8 * s : OO[l];
+            owned(s, off, lanes([&](std::size_t l) { return at_off(d.c, off[l]); }));
+        }
+    }
+    for (std::size_t s = 0; s < 4; ++s) {
+        std::size_t off[kLanes];
+        for (std::size_t l = 0; l < kLanes; ++l) off[l] = opaque(std::size_t{d.in_pair[ib[l] + s]} * sizeof(double));
+        incoming(s, off);
+    }
+    if (more) [[unlikely]] {
+        const std::int32_t in_max = std::max(std::max(in_i[0], in_i[1]), std::max(in_i[2], in_i[3]));
+        for (std::int32_t s = 4; s < in_max; ++s) {
+            std::size_t off[kLanes];
+            for (std::size_t l = 0; l < kLanes; ++l)
+                off[l] = std::size_t{d.in_pair[s < in_i[l] ? ib[l] + s : ib[l]]} * sizeof(double);
+            incoming(s, off);
+        }
+    }
+    if (d.wall_begin[i0] != d.wall_begin[i0 + kLanes]) {  // a wall candidate: one disc at a time
+        for (std::size_t l = 0; l < kLanes; ++l) {
+            Vec2 f = {fx[l], fy[l]};
+            double tl = t[l];
+            wall_contacts(d, i0 + l, f, tl);
+            fx[l] = f.x;
+            fy[l] = f.y;
+            t[l] = tl;
+        }
+    }
+    const vd f01 = __builtin_shufflevector(fx, fy, 0, 4, 1, 5);  // {fx0, fy0, fx1, fy1}
+    const vd f23 = __builtin_shufflevector(fx, fy, 2, 6, 3, 7);
+    simd::store(d.force + i0, f01);
+    simd::store(d.force + i0 + 2, f23);
+    simd::store(d.torque + i0, t);
+    if (d.kick) kick_quad(d.v + i0, d.omega + i0, d.inv_mass + i0, d.inv_inertia + i0, f01, f23, t, 0.5 * d.dt);
+}
+
+template <bool kQuads>
 [[gnu::always_inline]] inline void gather_body(const GatherData& dref, std::size_t begin, std::size_t end) {
     const GatherData d = dref;
-    for (std::size_t i = begin; i < end; ++i) gather_disc(d, i);
+    std::size_t i = begin;
+    if constexpr (kQuads)
+        for (; i + kLanes <= end; i += kLanes) gather_quad(d, i);
+    for (; i < end; ++i) gather_disc(d, i);
 }
 
 [[gnu::always_inline]] inline void pair_body(const PairKernelData& dref, std::size_t begin, std::size_t end) {
@@ -330,14 +466,68 @@ template <class F>
     if (k < end) eval_tail(d, k, end - k);
 }
 
+
+/// The first half kick and the drift of disc i (Simulation's integrator, operation for operation).
+[[gnu::always_inline]] inline double kick_drift_disc(const KickData& d, std::size_t i, double max_d2) {
+    d.v[i] += (d.half * d.inv_mass[i]) * d.force[i];
+    d.omega[i] += d.half * d.inv_inertia[i] * d.torque[i];
+    d.x[i] += d.dt * d.v[i];
+    d.theta[i] += d.dt * d.omega[i];
+    return std::max(max_d2, norm2(d.x[i] - d.x_ref[i]));
+}
+
+/// kick_drift_disc for discs i0 .. i0 + 3: {v_x, v_y} and {x, y} of two
+/// discs a vector, the rest a disc per lane; the same operations.
+[[gnu::always_inline]] inline vd kick_drift_quad(const KickData& d, std::size_t i0, vd max_d2) {
+    const auto [v01, v23] = kick_quad(d.v + i0, d.omega + i0, d.inv_mass + i0, d.inv_inertia + i0,
+                                      simd::load<vd>(d.force + i0), simd::load<vd>(d.force + i0 + 2),
+                                      simd::load<vd>(d.torque + i0), d.half);
+    const vd w = simd::load<vd>(d.omega + i0);
+    const vd x01 = simd::load<vd>(d.x + i0) + d.dt * v01, x23 = simd::load<vd>(d.x + i0 + 2) + d.dt * v23;
+    simd::store(d.x + i0, x01);
+    simd::store(d.x + i0 + 2, x23);
+    simd::store(d.theta + i0, simd::load<vd>(d.theta + i0) + d.dt * w);
+    const vd e01 = x01 - simd::load<vd>(d.x_ref + i0), e23 = x23 - simd::load<vd>(d.x_ref + i0 + 2);
+    const vd s01 = e01 * e01, s23 = e23 * e23;
+    const vd r2 = even(s01, s23) + odd(s01, s23);
+    return max_d2 < r2 ? r2 : max_d2;  // std::max, lane by lane
+}
+
+template <bool kQuads>
+[[gnu::always_inline]] inline double kick_drift_body(const KickData& d, std::size_t begin, std::size_t end,
+                                                     double max_d2) {
+    std::size_t i = begin;
+    if constexpr (kQuads) {
+        vd m = vd{} + max_d2;
+        for (; i + kLanes <= end; i += kLanes) m = kick_drift_quad(d, i, m);
+        for (std::size_t l = 0; l < kLanes; ++l) max_d2 = std::max(max_d2, m[l]);  // max is exact in any order
+    }
+    for (; i < end; ++i) max_d2 = kick_drift_disc(d, i, max_d2);
+    return max_d2;
+}
+
+template <bool kQuads>
+[[gnu::always_inline]] inline void kick_body(const KickData& d, std::size_t begin, std::size_t end) {
+    std::size_t i = begin;
+    if constexpr (kQuads) {
+        for (; i + kLanes <= end; i += kLanes)
+            kick_quad(d.v + i, d.omega + i, d.inv_mass + i, d.inv_inertia + i, simd::load<vd>(d.force + i),
+                      simd::load<vd>(d.force + i + 2), simd::load<vd>(d.torque + i), d.half);
+    }
+    for (; i < end; ++i) {
+        d.v[i] += (d.half * d.inv_mass[i]) * d.force[i];
+        d.omega[i] += d.half * d.inv_inertia[i] * d.torque[i];
+    }
+}
+
 // The three builds of each kernel: the bodies above inlined into functions
 // compiled for each ISA (the always_inline helpers take the caller's ISA).
-void gather_sse2(const GatherData& d, std::size_t b, std::size_t e) { gather_body(d, b, e); }
+void gather_sse2(const GatherData& d, std::size_t b, std::size_t e) { gather_body<false>(d, b, e); }
 [[gnu::target("arch=x86-64-v3")]] void gather_avx2(const GatherData& d, std::size_t b, std::size_t e) {
-    gather_body(d, b, e);
+    gather_body<true>(d, b, e);
 }
 [[gnu::target("arch=x86-64-v4")]] void gather_avx512(const GatherData& d, std::size_t b, std::size_t e) {
-    gather_body(d, b, e);
+    gather_body<true>(d, b, e);
 }
 void pairs_sse2(const PairKernelData& d, std::size_t b, std::size_t e) { pair_body(d, b, e); }
 [[gnu::target("arch=x86-64-v3")]] void pairs_avx2(const PairKernelData& d, std::size_t b, std::size_t e) {
@@ -347,14 +537,33 @@ void pairs_sse2(const PairKernelData& d, std::size_t b, std::size_t e) { pair_bo
     pair_body(d, b, e);
 }
 
+double kick_drift_sse2(const KickData& d, std::size_t b, std::size_t e, double m) {
+    return kick_drift_body<false>(d, b, e, m);
+}
+[[gnu::target("arch=x86-64-v3")]] double kick_drift_avx2(const KickData& d, std::size_t b, std::size_t e, double m) {
+    return kick_drift_body<true>(d, b, e, m);
+}
+[[gnu::target("arch=x86-64-v4")]] double kick_drift_avx512(const KickData& d, std::size_t b, std::size_t e, double m) {
+    return kick_drift_body<true>(d, b, e, m);
+}
+void kick_sse2(const KickData& d, std::size_t b, std::size_t e) { kick_body<false>(d, b, e); }
+[[gnu::target("arch=x86-64-v3")]] void kick_avx2(const KickData& d, std::size_t b, std::size_t e) {
+    kick_body<true>(d, b, e);
+}
+[[gnu::target("arch=x86-64-v4")]] void kick_avx512(const KickData& d, std::size_t b, std::size_t e) {
+    kick_body<true>(d, b, e);
+}
+
 struct Kernels {
     KernelIsa isa;
     void (*gather)(const GatherData&, std::size_t, std::size_t);
     void (*pairs)(const PairKernelData&, std::size_t, std::size_t);
+    double (*kick_drift)(const KickData&, std::size_t, std::size_t, double);
+    void (*kick)(const KickData&, std::size_t, std::size_t);
 };
-constexpr Kernels kVersions[] = {{KernelIsa::sse2, gather_sse2, pairs_sse2},
-                                 {KernelIsa::avx2, gather_avx2, pairs_avx2},
-                                 {KernelIsa::avx512, gather_avx512, pairs_avx512}};
+constexpr Kernels kVersions[] = {{KernelIsa::sse2, gather_sse2, pairs_sse2, kick_drift_sse2, kick_sse2},
+                                 {KernelIsa::avx2, gather_avx2, pairs_avx2, kick_drift_avx2, kick_avx2},
+                                 {KernelIsa::avx512, gather_avx512, pairs_avx512, kick_drift_avx512, kick_avx512}};
 
 bool cpu_runs(KernelIsa isa) {
     __builtin_cpu_init();
@@ -447,5 +656,11 @@ void pair_radii(const double* radius, const std::uint32_t* i, const std::uint32_
 }
 
 void eval_pair_range(const PairKernelData& d, std::size_t begin, std::size_t end) { kernels().pairs(d, begin, end); }
+
+double kick_drift_range(const KickData& d, std::size_t begin, std::size_t end, double max_d2) {
+    return kernels().kick_drift(d, begin, end, max_d2);
+}
+
+void kick_range(const KickData& d, std::size_t begin, std::size_t end) { kernels().kick(d, begin, end); }
 
 }  // namespace orodem

@@ -2,7 +2,11 @@
 //   A  eval_pair_range: the contact law for candidate pairs, four pairs at a
 //      time in SIMD lanes;
 //   B  gather_range: per disc, gravity + its pair forces + its wall contacts,
-//      then (optionally) the second half kick.
+//      then (optionally) the second half kick; four discs at a time in SIMD
+//      lanes in the AVX2 and AVX-512 versions;
+// and the integrator's per-disc passes, four discs at a time likewise:
+//      kick_drift_range (first half kick, drift, the rebuild test's
+//      displacement) and kick_range (second half kick).
 //
 // Bit-identity: every lane performs exactly the IEEE operations, in the same
 // order, that eval_contact() and the scalar pair loop perform for one pair
@@ -129,5 +133,26 @@ struct GatherData {
 /// pairs (each in order) + wall contacts (evaluated here, in order), torque
 /// -R (Σ c ...) likewise term by term; then the half kick if d.kick.
 void gather_range(const GatherData& d, std::size_t begin, std::size_t end);
+
+/// Views for the integrator's per-disc passes (no ownership).
+struct KickData {
+    Vec2* x;
+    Vec2* v;
+    double* omega;
+    double* theta;
+    const Vec2* force;
+    const double* torque;
+    const double* inv_mass;
+    const double* inv_inertia;
+    const Vec2* x_ref;  // positions at the last rebuild
+    double dt;          // [s]
+    double half;        // dt / 2 [s]
+};
+
+/// Discs [begin, end): v += (dt/2 / m) F, ω += (dt/2 / I) T, x += dt v,
+/// θ += dt ω; returns the larger of `max_d2` and every |x - x_ref|² [m²].
+double kick_drift_range(const KickData& d, std::size_t begin, std::size_t end, double max_d2);
+/// Discs [begin, end): v += (dt/2 / m) F, ω += (dt/2 / I) T.
+void kick_range(const KickData& d, std::size_t begin, std::size_t end);
 
 }  // namespace orodem

@@ -268,17 +268,20 @@ void Simulation::compute_forces() {
 
 namespace {
 
-/// The first half kick and the drift of disc i; returns |x - x_ref|².
-inline double kick_drift_disc(ParticleStore& p, const std::vector<Vec2>& x_ref, std::size_t i, double dt,
-                              double half) {
-    p.v[i] += (half * p.inv_mass[i]) * p.force[i];
-    p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
-    p.x[i] += dt * p.v[i];
-    p.theta[i] += dt * p.omega[i];
-    return norm2(p.x[i] - x_ref[i]);
-}
+/// The integrator's per-disc passes (kick_drift_range, kick_range) run over
+/// chunks of this many discs in an omp for (the rebuild test's maximum
+/// reduced over the threads). Any split gives the same results: a disc's
+/// own operations, and a maximum is exact in any order.
+constexpr long long kKickChunk = 1024;
 
 }  // namespace
+
+KickData Simulation::kick_data() {
+    ParticleStore& p = particles;
+    return {p.x.data(),     p.v.data(),        p.omega.data(),       p.theta.data(),
+            p.force.data(), p.torque.data(),   p.inv_mass.data(),    p.inv_inertia.data(),
+            builder_.x_ref().data(), params.dt, 0.5 * params.dt};
+}
 
 bool Simulation::drift_range(long long& b, long long& e) const {
     // Inside advance(), the discs outside the drift range (sleeping or fixed,
@@ -303,16 +306,15 @@ void Simulation::end_drift(bool lazy, double max_d2) {
 }
 
 void Simulation::kick_drift() {
-    ParticleStore& p = particles;
-    const double dt = params.dt;
-    const double half = 0.5 * dt;
-    const auto& x_ref = builder_.x_ref();
+    const KickData kd = kick_data();
     double max_d2 = max_disp2_;
     long long b = 0, e = 0;
     const bool lazy = drift_range(b, e);
+    const long long chunks = (e - b + kKickChunk - 1) / kKickChunk;
 #pragma omp parallel for schedule(static) if(e - b >= kParallelMin) reduction(max : max_d2)
-    for (long long ii = b; ii < e; ++ii)
-        max_d2 = std::max(max_d2, kick_drift_disc(p, x_ref, static_cast<std::size_t>(ii), dt, half));
+    for (long long c = 0; c < chunks; ++c)
+        max_d2 = kick_drift_range(kd, static_cast<std::size_t>(b + c * kKickChunk),
+                                  static_cast<std::size_t>(std::min(e, b + (c + 1) * kKickChunk)), max_d2);
     end_drift(lazy, max_d2);
 }
 
@@ -331,22 +333,20 @@ bool Simulation::step_in_one_region(double wall_move) {
     // up every barrier). Every thread takes the same rebuild decision from
     // the reduced maximum; on a rebuild step the region ends after the drift
     // and step() rebuilds outside it (false).
-    ParticleStore& p = particles;
-    const double dt = params.dt;
-    const double half = 0.5 * dt;
-    const auto& x_ref = builder_.x_ref();
+    const KickData kk = kick_data();
     const PairKernelData kd = pair_kernel_data(true);
     const GatherData gd = gather_data(true, true);
-    const std::size_t npairs = contacts.size(), n = p.size();
+    const std::size_t npairs = contacts.size(), n = particles.size();
     double max_d2 = max_disp2_;
     bool rebuild = false;
     double t_kicked = 0.0, t_pairs_done = 0.0;
 #pragma omp parallel if(static_cast<long long>(n) >= kParallelMin)
     {
-        const long long nn = static_cast<long long>(n);
+        const long long nn = static_cast<long long>(n), chunks = (nn + kKickChunk - 1) / kKickChunk;
 #pragma omp for schedule(static) reduction(max : max_d2)
-        for (long long ii = 0; ii < nn; ++ii)
-            max_d2 = std::max(max_d2, kick_drift_disc(p, x_ref, static_cast<std::size_t>(ii), dt, half));
+        for (long long c = 0; c < chunks; ++c)
+            max_d2 = kick_drift_range(kk, static_cast<std::size_t>(c * kKickChunk),
+                                      static_cast<std::size_t>(std::min(nn, (c + 1) * kKickChunk)), max_d2);
         // (the loop's barrier: max_d2 is final and every position is in place)
         const bool need = force_rebuild_ || std::sqrt(max_d2) + wall_move > 0.5 * params.skin;
 #pragma omp master
@@ -378,10 +378,7 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
     // one single fewer (the same operations on each disc, the same tallies,
     // so the same results). A rebuild step ends the region after the
     // after_drift hooks and step() finishes it phase by phase, as before.
-    ParticleStore& p = particles;
-    const double dt = params.dt;
-    const double half = 0.5 * dt;
-    const auto& x_ref = builder_.x_ref();
+    const KickData kk = kick_data();
     long long db = 0, de = 0;
     const bool lazy = drift_range(db, de);
     const PairKernelData kd = pair_kernel_data(true);
@@ -394,9 +391,11 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
     for (const auto& bd : boundaries) by_range = by_range && bd->force_hook() != Boundary::ForceHook::whole;
 #pragma omp parallel
     {
+        const long long chunks = (de - db + kKickChunk - 1) / kKickChunk;
 #pragma omp for schedule(static) reduction(max : max_d2)
-        for (long long ii = db; ii < de; ++ii)
-            max_d2 = std::max(max_d2, kick_drift_disc(p, x_ref, static_cast<std::size_t>(ii), dt, half));
+        for (long long c = 0; c < chunks; ++c)
+            max_d2 = kick_drift_range(kk, static_cast<std::size_t>(db + c * kKickChunk),
+                                      static_cast<std::size_t>(std::min(de, db + (c + 1) * kKickChunk)), max_d2);
 #pragma omp single
         {
             stamp[0] = omp_get_wtime();
@@ -439,10 +438,7 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
             }
             // The second half kick over the same discs as this thread's
             // gather (sleeping discs have inv_mass = inv_inertia = 0).
-            for (std::size_t i = disc0 + b; i < disc0 + e; ++i) {
-                p.v[i] += (half * p.inv_mass[i]) * p.force[i];
-                p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
-            }
+            if (b < e) kick_range(kk, disc0 + b, disc0 + e);
 #pragma omp barrier
 #pragma omp master
             {
@@ -459,15 +455,13 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
 
 void Simulation::kick() {
     // Sleeping discs have inv_mass = inv_inertia = 0: only the awake range.
-    ParticleStore& p = particles;
-    const double half = 0.5 * params.dt;
+    const KickData kd = kick_data();
     const long long b = awake_begin_, e = awake_end_;
+    const long long chunks = (e - b + kKickChunk - 1) / kKickChunk;
 #pragma omp parallel for schedule(static) if(e - b >= kParallelMin)
-    for (long long ii = b; ii < e; ++ii) {
-        const std::size_t i = static_cast<std::size_t>(ii);
-        p.v[i] += (half * p.inv_mass[i]) * p.force[i];
-        p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
-    }
+    for (long long c = 0; c < chunks; ++c)
+        kick_range(kd, static_cast<std::size_t>(b + c * kKickChunk),
+                   static_cast<std::size_t>(std::min(e, b + (c + 1) * kKickChunk)));
 }
 
 bool Simulation::needs_rebuild(double wall_move) const {

@@ -209,6 +209,7 @@ private:
     double move_walls();     // walls move by dt; returns the largest wall shift since the rebuild [m]
     PairKernelData pair_kernel_data(bool update_history);
     GatherData gather_data(bool update_history, bool kick);
+    KickData kick_data();
     template <bool kUpdateHistory>
     void compute_forces();   // phases A and B, no kick
     PairBuilder::Settings builder_settings() const;

@@ -7,18 +7,28 @@
 // would catch a drift too).
 //
 // Cost model (30,000-disc pile, docs/benchmarks.md "Profile"): phase A is
-// bound by its instruction count, neither by memory nor by the latency of a
-// block's chain (two passes per chunk and two interleaved blocks gained
-// nothing). About 50 instructions a pair in the AVX-512 version: a fifth
-// scalar index work, two fifths loads, shuffles and stores, a third
-// arithmetic and selects. Hence four lanes (wider vectors and hardware
-// gathers only add work), contiguous loads and stores of the pair columns,
-// each disc index held as one byte offset that addresses both column widths
-// (opaque), x and v into lanes by in-lane unpacks (gather_vec2_off), ω built
-// in vector registers at once (lanes_now), the sliding branch skipped when no
-// lane of a block slides (about nine blocks in ten), and what changes only
-// with the pairs or the masses as pair columns computed then, not every
-// step: the dashpots (m_eff; pair_dashpots) and the radii (pair_radii).
+// bound by how many of its instructions the core holds in flight, neither by
+// memory nor by one block's chain alone (two passes per chunk and two
+// interleaved blocks gained nothing); a block's chain (sqrt, then the
+// division, then the law down to the sliding test) is long, so fewer
+// instructions per pair let more blocks overlap. Per block: a fifth scalar
+// index work, two fifths loads, shuffles and stores, a third arithmetic and
+// selects. Hence eight lanes in the AVX-512 version (Lanes8: the index,
+// column and arithmetic work per pair halves, 28% faster than four lanes on
+// the Zen 5 host) and four in the others (Lanes4), contiguous loads and
+// stores of the pair columns, each disc index held as one byte offset that
+// addresses both column widths (opaque), x and v into lanes by in-lane
+// unpacks (gather_vec2_off), ω built in vector registers at once
+// (lanes_now), the sliding branch skipped when no lane of a block slides
+// (about nine blocks of four in ten) and tested with one instruction
+// (any_lane, Lanes8::any), and what changes only with the pairs or the
+// masses as pair columns computed then, not every step: the dashpots (m_eff;
+// pair_dashpots) and the radii (pair_radii).
+//
+// Phase B and the integrator's passes take four discs a time in the AVX
+// versions (gather_quad, kick_drift_quad): a disc per lane, so the serial
+// sums of one disc (its force and torque, term by term) stay in order while
+// four run side by side.
 #include "orodem/engine/pair_kernel.hpp"
 
 #include <string_view>
@@ -27,6 +37,7 @@
 
 #include "orodem/core/error.hpp"
 
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -41,15 +52,6 @@ using vd = simd::v4d;
 using vm = simd::v4m;
 using simd::lanes;
 constexpr std::size_t kLanes = 4;
-
-/// The inputs of kLanes pairs, one pair per lane.
-struct Block {
-    vd xix, xiy, xjx, xjy, shift, ri, rj, bonded, gamma_n, gamma_s, vix, viy, vjx, vjy, wi, wj, xi_x, xi_y;
-};
-/// The outputs.
-struct Out {
-    vd fx, fy, c, xi_x, xi_y;
-};
 
 [[gnu::always_inline]] inline vd cat(v2d a, v2d b) { return __builtin_shufflevector(a, b, 0, 1, 2, 3); }
 [[gnu::always_inline]] inline vd even(vd a, vd b) { return __builtin_shufflevector(a, b, 0, 2, 4, 6); }
@@ -110,136 +112,286 @@ template <class F>
     return cat(lo, hi);
 }
 
+// ---- Phase A: the lane policies ----
+//
+// The law is written once (compute_block) over a policy O of O::n lanes:
+// O::V the values, O::M a lane mask, and the few operations whose best form
+// differs with the width. Lanes4 (two 128-bit halves in the baseline
+// version, one ymm register in the AVX ones) masks with vector compares;
+// Lanes8 (one zmm register, the AVX-512 version) with mask registers: GCC 12
+// turns 512-bit vector compares in vector-extension code into eight scalar
+// compares, so Lanes8 compares, blends and zeroes with one instruction each
+// in inline asm (not intrinsics: those cannot be inlined into the template
+// the baseline version also instantiates). Eight lanes halve the index,
+// column and arithmetic instructions per pair of four, which fit twice the
+// pairs in the core's reorder window (phase A 28% faster on the Zen 5 host,
+// docs/benchmarks.md).
+
+template <bool kAvx>
+struct Lanes4 {
+    using V = vd;
+    using M = vm;
+    using Bits = std::uint32_t;  // one byte a lane (the shift and bond flags)
+    static constexpr std::size_t n = 4;
+    [[gnu::always_inline]] static M nonzero(V a) { return a != 0.0; }
+    [[gnu::always_inline]] static M ge(V a, V b) { return a >= b; }
+    [[gnu::always_inline]] static M gt(V a, V b) { return a > b; }
+    [[gnu::always_inline]] static M lt(V a, V b) { return a < b; }
+    [[gnu::always_inline]] static M or_(M a, M b) { return a | b; }
+    [[gnu::always_inline]] static M and_not(M a, M b) { return ~a & b; }  // b and not a
+    [[gnu::always_inline]] static M not_(M a) { return ~a; }
+    [[gnu::always_inline]] static V select(M m, V t, V f) { return m ? t : f; }
+    [[gnu::always_inline]] static V keep(M m, V a) { return m ? a : V{}; }
+    [[gnu::always_inline]] static bool any(M m) { return any_lane<kAvx>(m); }
+    [[gnu::always_inline]] static V sqrt(V a) { return simd::sqrt(a); }
+    [[gnu::always_inline]] static V fabs(V a) { return simd::fabs(a); }
+    template <class F>
+    [[gnu::always_inline]] static V lanes(F&& f) {
+        return simd::lanes(f);
+    }
+    template <class F>
+    [[gnu::always_inline]] static V lanes_in_registers(F&& f) {
+        return lanes_now(f);
+    }
+    [[gnu::always_inline]] static void gather_vec2(const Vec2* a, const std::size_t* off, V& xs, V& ys) {
+        gather_vec2_off(a, off, xs, ys);
+    }
+    /// x and y of n Vec2 (a: the first n/2, b: the rest).
+    [[gnu::always_inline]] static V xs_of(V a, V b) { return even(a, b); }
+    [[gnu::always_inline]] static V ys_of(V a, V b) { return odd(a, b); }
+    /// The Vec2 of lanes 0 .. n/2 - 1, and of the rest, from x and y.
+    [[gnu::always_inline]] static V zip_lo(V x, V y) { return __builtin_shufflevector(x, y, 0, 4, 1, 5); }
+    [[gnu::always_inline]] static V zip_hi(V x, V y) { return __builtin_shufflevector(x, y, 2, 6, 3, 7); }
+};
+
+using v8d = double __attribute__((vector_size(8 * sizeof(double))));
+using v8m = decltype(v8d{} < v8d{});  // for the integer operations of fabs only (see above)
+
+struct Lanes8 {
+    using V = v8d;
+    using M = std::uint8_t;  // in the asm, a mask register k1-k7 ("Yk")
+    using Bits = std::uint64_t;
+    static constexpr std::size_t n = 8;
+    // vcmppd's predicates: NEQ_UQ, GE_OS, GT_OS, LT_OS (as C's != >= > <).
+    template <int kPredicate>
+    [[gnu::always_inline]] static M cmp(V a, V b) {
+        M m;
+        asm("vcmppd %3, %2, %1, %0" : "=Yk"(m) : "v"(a), "v"(b), "n"(kPredicate));
+        return m;
+    }
+    [[gnu::always_inline]] static M nonzero(V a) { return cmp<0x04>(a, V{}); }
+    [[gnu::always_inline]] static M ge(V a, V b) { return cmp<0x0d>(a, b); }
+    [[gnu::always_inline]] static M gt(V a, V b) { return cmp<0x0e>(a, b); }
+    [[gnu::always_inline]] static M lt(V a, V b) { return cmp<0x01>(a, b); }
+    [[gnu::always_inline]] static M or_(M a, M b) { return static_cast<M>(a | b); }
+    [[gnu::always_inline]] static M and_not(M a, M b) { return static_cast<M>(~a & b); }
+    [[gnu::always_inline]] static M not_(M a) { return static_cast<M>(~a); }
+    [[gnu::always_inline]] static V select(M m, V t, V f) {
+        V r;
+        asm("vblendmpd %2, %1, %0%{%3%}" : "=v"(r) : "v"(f), "v"(t), "Yk"(m));
+        return r;
+    }
+    [[gnu::always_inline]] static V keep(M m, V a) {
+        V r;
+        asm("vmovapd %1, %0%{%2%}%{z%}" : "=v"(r) : "v"(a), "Yk"(m));
+        return r;
+    }
+    [[gnu::always_inline]] static bool any(M m) { return m != 0; }
+    template <class F>
+    [[gnu::always_inline]] static V lanes(F&& f) {
+        return lanes_impl(f, std::make_index_sequence<8>{});
+    }
+    template <class F, std::size_t... L>
+    [[gnu::always_inline]] static V lanes_impl(F&& f, std::index_sequence<L...>) {
+        return V{f(L)...};
+    }
+    [[gnu::always_inline]] static V sqrt(V a) {
+        return lanes([&](std::size_t l) { return std::sqrt(a[l]); });
+    }
+    [[gnu::always_inline]] static V fabs(V a) {
+        const v8m magnitude = v8m{} + 0x7fffffffffffffffLL;
+        return reinterpret_cast<V>(reinterpret_cast<v8m>(a) & magnitude);
+    }
+    [[gnu::always_inline]] static V cat4(v2d a, v2d b, v2d c, v2d e) {
+        return __builtin_shufflevector(cat(a, b), cat(c, e), 0, 1, 2, 3, 4, 5, 6, 7);
+    }
+    template <class F>
+    [[gnu::always_inline]] static V lanes_in_registers(F&& f) {
+        v2d a = {f(0), f(1)}, b = {f(2), f(3)}, c = {f(4), f(5)}, e = {f(6), f(7)};
+        asm("" : "+x"(a), "+x"(b), "+x"(c), "+x"(e));
+        return cat4(a, b, c, e);
+    }
+    /// As gather_vec2_off: quarters {0, 2, 4, 6} and {1, 3, 5, 7}, then in-lane unpacks.
+    [[gnu::always_inline]] static void gather_vec2(const Vec2* a, const std::size_t* off, V& xs, V& ys) {
+        const char* base = reinterpret_cast<const char*>(a);
+        const auto at = [&](std::size_t l) { return simd::load<v2d>(base + 2 * off[l]); };
+        const V lo = cat4(at(0), at(2), at(4), at(6)), hi = cat4(at(1), at(3), at(5), at(7));
+        xs = __builtin_shufflevector(lo, hi, 0, 8, 2, 10, 4, 12, 6, 14);
+        ys = __builtin_shufflevector(lo, hi, 1, 9, 3, 11, 5, 13, 7, 15);
+    }
+    [[gnu::always_inline]] static V xs_of(V a, V b) {
+        return __builtin_shufflevector(a, b, 0, 2, 4, 6, 8, 10, 12, 14);
+    }
+    [[gnu::always_inline]] static V ys_of(V a, V b) {
+        return __builtin_shufflevector(a, b, 1, 3, 5, 7, 9, 11, 13, 15);
+    }
+    [[gnu::always_inline]] static V zip_lo(V x, V y) {
+        return __builtin_shufflevector(x, y, 0, 8, 1, 9, 2, 10, 3, 11);
+    }
+    [[gnu::always_inline]] static V zip_hi(V x, V y) {
+        return __builtin_shufflevector(x, y, 4, 12, 5, 13, 6, 14, 7, 15);
+    }
+};
+
+/// The inputs of O::n pairs, one pair per lane.
+template <class O>
+struct Block {
+    using V = typename O::V;
+    V xix, xiy, xjx, xjy, shift, ri, rj, bonded, gamma_n, gamma_s, vix, viy, vjx, vjy, wi, wj, xi_x, xi_y;
+};
+/// The outputs.
+template <class O>
+struct Out {
+    using V = typename O::V;
+    V fx, fy, c, xi_x, xi_y;
+};
+
 /// Loads a block; `K` are the pair indices of the lanes.
-[[gnu::always_inline]] inline Block load_block(const PairKernelData& d, const std::size_t* K, bool contiguous) {
-    std::size_t I[kLanes], J[kLanes];  // the discs' byte offsets into the double columns
-    for (std::size_t l = 0; l < kLanes; ++l) {
+template <class O>
+[[gnu::always_inline]] inline Block<O> load_block(const PairKernelData& d, const std::size_t* K, bool contiguous) {
+    using V = typename O::V;
+    constexpr std::size_t n = O::n;
+    std::size_t I[n], J[n];  // the discs' byte offsets into the double columns
+    for (std::size_t l = 0; l < n; ++l) {
         I[l] = opaque(std::size_t{d.i[K[l]]} * sizeof(double));
         J[l] = opaque(std::size_t{d.j[K[l]]} * sizeof(double));
     }
-    Block b;
-    gather_vec2_off(d.x, I, b.xix, b.xiy);
-    gather_vec2_off(d.x, J, b.xjx, b.xjy);
-    gather_vec2_off(d.v, I, b.vix, b.viy);
-    gather_vec2_off(d.v, J, b.vjx, b.vjy);
-    b.wi = lanes_now([&](std::size_t l) { return at_off(d.omega, I[l]); });
-    b.wj = lanes_now([&](std::size_t l) { return at_off(d.omega, J[l]); });
-    // Periodic images and bonds are rare in a block (all four bytes zero): then
+    Block<O> b;
+    O::gather_vec2(d.x, I, b.xix, b.xiy);
+    O::gather_vec2(d.x, J, b.xjx, b.xjy);
+    O::gather_vec2(d.v, I, b.vix, b.viy);
+    O::gather_vec2(d.v, J, b.vjx, b.vjy);
+    b.wi = O::lanes_in_registers([&](std::size_t l) { return at_off(d.omega, I[l]); });
+    b.wj = O::lanes_in_registers([&](std::size_t l) { return at_off(d.omega, J[l]); });
+    // Periodic images and bonds are rare in a block (all its bytes zero): then
     // skip the byte-to-double conversions.
-    std::uint32_t shift4 = 1, bonded4 = 1;
+    typename O::Bits shifts = 1, bonds = 1;
     if (contiguous) {
-        __builtin_memcpy(&shift4, d.shift + K[0], sizeof shift4);
-        __builtin_memcpy(&bonded4, d.bonded + K[0], sizeof bonded4);
+        __builtin_memcpy(&shifts, d.shift + K[0], sizeof shifts);
+        __builtin_memcpy(&bonds, d.bonded + K[0], sizeof bonds);
     }
-    b.shift = shift4 == 0 ? vd{} : lanes([&](std::size_t l) { return static_cast<double>(d.shift[K[l]]); });
-    b.bonded = bonded4 == 0 ? vd{} : lanes([&](std::size_t l) { return static_cast<double>(d.bonded[K[l]]); });
+    b.shift = shifts == 0 ? V{} : O::lanes([&](std::size_t l) { return static_cast<double>(d.shift[K[l]]); });
+    b.bonded = bonds == 0 ? V{} : O::lanes([&](std::size_t l) { return static_cast<double>(d.bonded[K[l]]); });
     if (contiguous) {
-        const vd a = simd::load<vd>(d.xi + K[0]), c = simd::load<vd>(d.xi + K[0] + 2);
-        b.xi_x = even(a, c);
-        b.xi_y = odd(a, c);
-        b.gamma_n = simd::load<vd>(d.gamma_n + K[0]);
-        b.gamma_s = simd::load<vd>(d.gamma_s + K[0]);
-        b.ri = simd::load<vd>(d.r_i + K[0]);
-        b.rj = simd::load<vd>(d.r_j + K[0]);
+        const V a = simd::load<V>(d.xi + K[0]), c = simd::load<V>(d.xi + K[0] + n / 2);
+        b.xi_x = O::xs_of(a, c);
+        b.xi_y = O::ys_of(a, c);
+        b.gamma_n = simd::load<V>(d.gamma_n + K[0]);
+        b.gamma_s = simd::load<V>(d.gamma_s + K[0]);
+        b.ri = simd::load<V>(d.r_i + K[0]);
+        b.rj = simd::load<V>(d.r_j + K[0]);
     } else {
-        std::size_t KO[kLanes];  // the pairs' byte offsets into a double column
-        for (std::size_t l = 0; l < kLanes; ++l) KO[l] = K[l] * sizeof(double);
-        gather_vec2_off(d.xi, KO, b.xi_x, b.xi_y);
-        b.gamma_n = lanes([&](std::size_t l) { return d.gamma_n[K[l]]; });
-        b.gamma_s = lanes([&](std::size_t l) { return d.gamma_s[K[l]]; });
-        b.ri = lanes([&](std::size_t l) { return d.r_i[K[l]]; });
-        b.rj = lanes([&](std::size_t l) { return d.r_j[K[l]]; });
+        std::size_t KO[n];  // the pairs' byte offsets into a double column
+        for (std::size_t l = 0; l < n; ++l) KO[l] = K[l] * sizeof(double);
+        O::gather_vec2(d.xi, KO, b.xi_x, b.xi_y);
+        b.gamma_n = O::lanes([&](std::size_t l) { return d.gamma_n[K[l]]; });
+        b.gamma_s = O::lanes([&](std::size_t l) { return d.gamma_s[K[l]]; });
+        b.ri = O::lanes([&](std::size_t l) { return d.r_i[K[l]]; });
+        b.rj = O::lanes([&](std::size_t l) { return d.r_j[K[l]]; });
     }
     return b;
 }
 
 /// The law for the lanes: eval_contact() and the scalar loop, operation for operation.
-template <bool kAvx>
-[[gnu::always_inline]] inline Out compute_block(const PairKernelData& d, const Block& b) {
-    const vm bonded = b.bonded != 0.0;
+template <class O>
+[[gnu::always_inline]] inline Out<O> compute_block(const PairKernelData& d, const Block<O>& b) {
+    using V = typename O::V;
+    using M = typename O::M;
+    const M bonded = O::nonzero(b.bonded);
     // d = x_i - (x_j + (shift W, 0)); touching unless r² >= (R_i + R_j)² (bonds always).
-    const vd dx = b.xix - (b.xjx + b.shift * d.period_x);
-    const vd dy = b.xiy - (b.xjy + 0.0);
-    const vd r2 = dx * dx + dy * dy;
-    const vd rsum = b.ri + b.rj;
-    const vm touch = bonded | ~(r2 >= rsum * rsum);
-    const vd r = simd::sqrt(r2);
-    const vd s = 1.0 / r;
-    const vd nx = s * dx, ny = s * dy;
-    const vd delta = rsum - r;
-    const vd vrx = b.vix - b.vjx, vry = b.viy - b.vjy;
-    const vd spin = b.ri * b.wi + b.rj * b.wj;
+    const V dx = b.xix - (b.xjx + b.shift * d.period_x);
+    const V dy = b.xiy - (b.xjy + 0.0);
+    const V r2 = dx * dx + dy * dy;
+    const V rsum = b.ri + b.rj;
+    const M touch = O::or_(bonded, O::not_(O::ge(r2, rsum * rsum)));
+    const V r = O::sqrt(r2);
+    const V s = 1.0 / r;
+    const V nx = s * dx, ny = s * dy;
+    const V delta = rsum - r;
+    const V vrx = b.vix - b.vjx, vry = b.viy - b.vjy;
+    const V spin = b.ri * b.wi + b.rj * b.wj;
 
     // Normal part.
     const LawParams& p = d.law;
-    const vd v_n = vrx * nx + vry * ny;
-    const vd vtx = (vrx - v_n * nx) + spin * ny;
-    const vd vty = (vry - v_n * ny) + spin * (-nx);
-    const vd gamma_n = b.gamma_n;  // from the masses, per pair (pair_dashpots)
-    vd f_n = p.k_n * delta - gamma_n * v_n;
-    if (p.clamp_normal) f_n = (~bonded & (f_n < 0.0)) ? vd{} : f_n;
+    const V v_n = vrx * nx + vry * ny;
+    const V vtx = (vrx - v_n * nx) + spin * ny;
+    const V vty = (vry - v_n * ny) + spin * (-nx);
+    const V gamma_n = b.gamma_n;  // from the masses, per pair (pair_dashpots)
+    V f_n = p.k_n * delta - gamma_n * v_n;
+    if (p.clamp_normal) f_n = O::select(O::and_not(bonded, O::lt(f_n, V{})), V{}, f_n);
 
     // Tangential spring, projected onto the tangent line, with the Coulomb
     // limit for unbonded pairs.
-    vd xi_x = b.xi_x, xi_y = b.xi_y;
-    vd ftx{}, fty{};
+    V xi_x = b.xi_x, xi_y = b.xi_y;
+    V ftx{}, fty{};
     if (p.tangential) {
         xi_x = xi_x + d.dt * vtx;
         xi_y = xi_y + d.dt * vty;
-        const vd along = xi_x * nx + xi_y * ny;
+        const V along = xi_x * nx + xi_y * ny;
         xi_x = xi_x - along * nx;
         xi_y = xi_y - along * ny;
-        const vd gamma_s = b.gamma_s;
+        const V gamma_s = b.gamma_s;
         ftx = (-p.k_s) * xi_x - gamma_s * vtx;
         fty = (-p.k_s) * xi_y - gamma_s * vty;
-        const vd f_max = p.mu * simd::fabs(f_n) + p.cohesion;
-        const vd ft2 = ftx * ftx + fty * fty;
-        const vm slide = ~bonded & (ft2 > f_max * f_max);
-        if (any_lane<kAvx>(slide)) {  // about one block in ten: skip the sqrt and divisions otherwise
+        const V f_max = p.mu * O::fabs(f_n) + p.cohesion;
+        const V ft2 = ftx * ftx + fty * fty;
+        const M slide = O::and_not(bonded, O::gt(ft2, f_max * f_max));
+        if (O::any(slide)) {  // about one block of four in ten: skip the sqrt and divisions otherwise
             // Sliding: scale F_t onto the limit and ξ so the spring (plus the dashpot) sits on it.
-            const vd ratio = f_max / simd::sqrt(ft2);
+            const V ratio = f_max / O::sqrt(ft2);
             // γ_s / k_s: +0 exactly when there is no tangential dashpot (then no division).
             const bool no_dashpot =
                 p.damp_mass_s == 0.0 && !std::signbit(p.damp_mass_s) && p.damp_sqrt_s == 0.0 && p.k_s > 0.0;
-            const vd g_over_k = no_dashpot ? vd{} : gamma_s / p.k_s;
-            const vd dpx = g_over_k * vtx, dpy = g_over_k * vty;
-            xi_x = slide ? ratio * (xi_x + dpx) - dpx : xi_x;
-            xi_y = slide ? ratio * (xi_y + dpy) - dpy : xi_y;
-            ftx = slide ? ratio * ftx : ftx;
-            fty = slide ? ratio * fty : fty;
+            const V g_over_k = no_dashpot ? V{} : gamma_s / p.k_s;
+            const V dpx = g_over_k * vtx, dpy = g_over_k * vty;
+            xi_x = O::select(slide, ratio * (xi_x + dpx) - dpx, xi_x);
+            xi_y = O::select(slide, ratio * (xi_y + dpy) - dpy, xi_y);
+            ftx = O::select(slide, ratio * ftx, ftx);
+            fty = O::select(slide, ratio * fty, fty);
         }
     }
-    Out o;
-    o.fx = touch ? f_n * nx + ftx : vd{};
-    o.fy = touch ? f_n * ny + fty : vd{};
-    o.c = touch ? nx * fty - ny * ftx : vd{};
-    o.xi_x = touch ? xi_x : vd{};  // history starts afresh at the next touch
-    o.xi_y = touch ? xi_y : vd{};
+    Out<O> o;
+    o.fx = O::keep(touch, f_n * nx + ftx);
+    o.fy = O::keep(touch, f_n * ny + fty);
+    o.c = O::keep(touch, nx * fty - ny * ftx);
+    o.xi_x = O::keep(touch, xi_x);  // history starts afresh at the next touch
+    o.xi_y = O::keep(touch, xi_y);
     return o;
 }
 
-/// Four whole pairs at k0: contiguous loads and stores of the pair columns.
-template <bool kAvx>
+/// O::n whole pairs at k0: contiguous loads and stores of the pair columns.
+template <class O>
 [[gnu::always_inline]] inline void eval_block(const PairKernelData& d, std::size_t k0) {
-    const std::size_t K[kLanes] = {k0, k0 + 1, k0 + 2, k0 + 3};
-    const Out o = compute_block<kAvx>(d, load_block(d, K, true));
-    const vd f01 = __builtin_shufflevector(o.fx, o.fy, 0, 4, 1, 5);  // {fx0, fy0, fx1, fy1}
-    const vd f23 = __builtin_shufflevector(o.fx, o.fy, 2, 6, 3, 7);
-    simd::store(d.f + k0, f01);
-    simd::store(d.f + k0 + 2, f23);
+    constexpr std::size_t n = O::n;
+    const auto K = [k0]<std::size_t... L>(std::index_sequence<L...>) {
+        return std::array<std::size_t, n>{(k0 + L)...};
+    }(std::make_index_sequence<n>{});
+    const Out<O> o = compute_block<O>(d, load_block<O>(d, K.data(), true));
+    simd::store(d.f + k0, O::zip_lo(o.fx, o.fy));
+    simd::store(d.f + k0 + n / 2, O::zip_hi(o.fx, o.fy));
     simd::store(d.c + k0, o.c);
     if (d.update_history) {
-        simd::store(d.xi + k0, __builtin_shufflevector(o.xi_x, o.xi_y, 0, 4, 1, 5));
-        simd::store(d.xi + k0 + 2, __builtin_shufflevector(o.xi_x, o.xi_y, 2, 6, 3, 7));
+        simd::store(d.xi + k0, O::zip_lo(o.xi_x, o.xi_y));
+        simd::store(d.xi + k0 + n / 2, O::zip_hi(o.xi_x, o.xi_y));
     }
 }
 
-/// The last 1-3 pairs of a range: lanes past the end repeat the last pair and are not stored.
-template <bool kAvx>
+/// The last 1 .. O::n - 1 pairs of a range: lanes past the end repeat the last pair and are not stored.
+template <class O>
 [[gnu::always_inline]] inline void eval_tail(const PairKernelData& d, std::size_t k0, std::size_t valid) {
-    std::size_t K[kLanes];
-    for (std::size_t l = 0; l < kLanes; ++l) K[l] = k0 + (l < valid ? l : valid - 1);
-    const Out o = compute_block<kAvx>(d, load_block(d, K, false));
+    std::size_t K[O::n];
+    for (std::size_t l = 0; l < O::n; ++l) K[l] = k0 + (l < valid ? l : valid - 1);
+    const Out<O> o = compute_block<O>(d, load_block<O>(d, K, false));
     for (std::size_t l = 0; l < valid; ++l) {
         const std::size_t k = k0 + l;
         d.f[k] = {o.fx[l], o.fy[l]};
@@ -475,14 +627,15 @@ template <bool kQuads>
     for (; i < end; ++i) gather_disc(d, i);
 }
 
-template <bool kAvx>
+
+template <class O>
 [[gnu::always_inline]] inline void pair_body(const PairKernelData& dref, std::size_t begin, std::size_t end) {
     // A local copy: the kernel's stores (memcpy, may alias anything) then
     // cannot force reloads of the column pointers.
     const PairKernelData d = dref;
     std::size_t k = begin;
-    for (; k + kLanes <= end; k += kLanes) eval_block<kAvx>(d, k);
-    if (k < end) eval_tail<kAvx>(d, k, end - k);
+    for (; k + O::n <= end; k += O::n) eval_block<O>(d, k);
+    if (k < end) eval_tail<O>(d, k, end - k);
 }
 
 
@@ -513,8 +666,9 @@ template <bool kAvx>
 }
 
 template <bool kQuads>
-[[gnu::always_inline]] inline double kick_drift_body(const KickData& d, std::size_t begin, std::size_t end,
+[[gnu::always_inline]] inline double kick_drift_body(const KickData& dref, std::size_t begin, std::size_t end,
                                                      double max_d2) {
+    const KickData d = dref;  // a local copy: the stores cannot force reloads of the column pointers
     std::size_t i = begin;
     if constexpr (kQuads) {
         vd m = vd{} + max_d2;
@@ -526,7 +680,8 @@ template <bool kQuads>
 }
 
 template <bool kQuads>
-[[gnu::always_inline]] inline void kick_body(const KickData& d, std::size_t begin, std::size_t end) {
+[[gnu::always_inline]] inline void kick_body(const KickData& dref, std::size_t begin, std::size_t end) {
+    const KickData d = dref;
     std::size_t i = begin;
     if constexpr (kQuads) {
         for (; i + kLanes <= end; i += kLanes)
@@ -548,12 +703,12 @@ void gather_sse2(const GatherData& d, std::size_t b, std::size_t e) { gather_bod
 [[gnu::target("arch=x86-64-v4")]] void gather_avx512(const GatherData& d, std::size_t b, std::size_t e) {
     gather_body<true>(d, b, e);
 }
-void pairs_sse2(const PairKernelData& d, std::size_t b, std::size_t e) { pair_body<false>(d, b, e); }
+void pairs_sse2(const PairKernelData& d, std::size_t b, std::size_t e) { pair_body<Lanes4<false>>(d, b, e); }
 [[gnu::target("arch=x86-64-v3")]] void pairs_avx2(const PairKernelData& d, std::size_t b, std::size_t e) {
-    pair_body<true>(d, b, e);
+    pair_body<Lanes4<true>>(d, b, e);
 }
 [[gnu::target("arch=x86-64-v4")]] void pairs_avx512(const PairKernelData& d, std::size_t b, std::size_t e) {
-    pair_body<true>(d, b, e);
+    pair_body<Lanes8>(d, b, e);
 }
 
 double kick_drift_sse2(const KickData& d, std::size_t b, std::size_t e, double m) {

@@ -1,6 +1,6 @@
 // The two force phases of the step as kernels over index ranges:
-//   A  eval_pair_range: the contact law for candidate pairs, four pairs at a
-//      time in SIMD lanes;
+//   A  eval_pair_range: the contact law for candidate pairs, eight pairs at a
+//      time in SIMD lanes in the AVX-512 version, four in the others;
 //   B  gather_range: per disc, gravity + its pair forces + its wall contacts,
 //      then (optionally) the second half kick; four discs at a time in SIMD
 //      lanes in the AVX2 and AVX-512 versions;

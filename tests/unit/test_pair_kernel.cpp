@@ -212,8 +212,9 @@ TEST(PairKernel, GatherBitIdenticalToThePlainSums) {
             want_w[i] = s.p.omega[i] + half * s.p.inv_inertia[i] * t;
         }
         EXPECT_GT(over_four, 0u);  // the plain path for discs with many pairs is covered
-        if (std::signbit(g.x))
+        if (std::signbit(g.x)) {
             EXPECT_GT(std::count_if(want_f.begin(), want_f.end(), [](Vec2 f) { return std::signbit(f.x); }), 0);
+        }
         const std::vector<std::uint32_t> no_walls(n + 1, 0);
         const GatherData gd{s.p.x.data(),      s.p.v.data(),        s.p.omega.data(),    s.p.radius.data(),
                             s.p.mass.data(),   s.p.inv_mass.data(), s.p.inv_inertia.data(), s.p.force.data(),

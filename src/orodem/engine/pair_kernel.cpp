@@ -26,9 +26,10 @@
 // pair_dashpots) and the radii (pair_radii).
 //
 // Phase B and the integrator's passes take four discs a time in the AVX
-// versions (gather_quad, kick_drift_quad): a disc per lane, so the serial
+// versions (gather_lanes, kick_drift_quad): a disc per lane, so the serial
 // sums of one disc (its force and torque, term by term) stay in order while
-// four run side by side.
+// four run side by side. Eight lanes do not pay there: eight discs' pair
+// offsets do not fit the general registers.
 #include "orodem/engine/pair_kernel.hpp"
 
 #include <string_view>
@@ -39,6 +40,7 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <utility>
 
 #include "orodem/core/simd.hpp"
@@ -127,12 +129,31 @@ template <class F>
 // pairs in the core's reorder window (phase A 28% faster on the Zen 5 host,
 // docs/benchmarks.md).
 
+/// c of four discs' owned slots 0-3 (four doubles from each byte offset
+/// OO[l] of column c) as four slot vectors of the discs: one load a disc and
+/// a 4 × 4 transpose.
+[[gnu::always_inline]] inline void owned_c4(const double* c, const std::size_t* OO, vd (&out)[4]) {
+    const char* base = reinterpret_cast<const char*>(c);
+    const vd c0 = simd::load<vd>(base + OO[0]), c1 = simd::load<vd>(base + OO[1]);
+    const vd c2 = simd::load<vd>(base + OO[2]), c3 = simd::load<vd>(base + OO[3]);
+    const vd lo01 = __builtin_shufflevector(c0, c1, 0, 4, 2, 6), hi01 = __builtin_shufflevector(c0, c1, 1, 5, 3, 7);
+    const vd lo23 = __builtin_shufflevector(c2, c3, 0, 4, 2, 6), hi23 = __builtin_shufflevector(c2, c3, 1, 5, 3, 7);
+    out[0] = __builtin_shufflevector(lo01, lo23, 0, 1, 4, 5);
+    out[1] = __builtin_shufflevector(hi01, hi23, 0, 1, 4, 5);
+    out[2] = __builtin_shufflevector(lo01, lo23, 2, 3, 6, 7);
+    out[3] = __builtin_shufflevector(hi01, hi23, 2, 3, 6, 7);
+}
+
 template <bool kAvx>
 struct Lanes4 {
     using V = vd;
     using M = vm;
     using Bits = std::uint32_t;  // one byte a lane (the shift and bond flags)
+    using IV = std::int32_t __attribute__((vector_size(4 * sizeof(std::int32_t))));
     static constexpr std::size_t n = 4;
+    [[gnu::always_inline]] static void owned_c(const double* c, const std::size_t* OO, V (&out)[4]) {
+        owned_c4(c, OO, out);
+    }
     [[gnu::always_inline]] static M nonzero(V a) { return a != 0.0; }
     [[gnu::always_inline]] static M ge(V a, V b) { return a >= b; }
     [[gnu::always_inline]] static M gt(V a, V b) { return a > b; }
@@ -493,115 +514,113 @@ template <class O>
     }
 }
 
-/// The half kick of four discs (Simulation::kick()'s operations): v and F
-/// as the interleaved {x, y} of two discs a vector (f01, f23), the rest a
+/// The half kick of O::n discs (Simulation::kick()'s operations): v and F
+/// as the interleaved {x, y} of n/2 discs a vector (f_lo, f_hi), the rest a
 /// disc per lane; returns the new velocities the same way.
-[[gnu::always_inline]] inline std::pair<vd, vd> kick_quad(Vec2* v, double* omega, const double* inv_mass,
-                                                          const double* inv_inertia, vd f01, vd f23, vd t,
-                                                          double half) {
-    const vd a = half * simd::load<vd>(inv_mass);
-    const vd a01 = __builtin_shufflevector(a, a, 0, 0, 1, 1), a23 = __builtin_shufflevector(a, a, 2, 2, 3, 3);
-    const vd v01 = simd::load<vd>(v) + a01 * f01, v23 = simd::load<vd>(v + 2) + a23 * f23;
-    simd::store(v, v01);
-    simd::store(v + 2, v23);
-    simd::store(omega, simd::load<vd>(omega) + half * simd::load<vd>(inv_inertia) * t);
-    return {v01, v23};
+template <class O, class V = typename O::V>
+[[gnu::always_inline]] inline std::pair<V, V> kick_lanes(Vec2* v, double* omega, const double* inv_mass,
+                                                         const double* inv_inertia, V f_lo, V f_hi, V t,
+                                                         double half) {
+    const V a = half * simd::load<V>(inv_mass);
+    const V v_lo = simd::load<V>(v) + O::zip_lo(a, a) * f_lo, v_hi = simd::load<V>(v + O::n / 2) + O::zip_hi(a, a) * f_hi;
+    simd::store(v, v_lo);
+    simd::store(v + O::n / 2, v_hi);
+    simd::store(omega, simd::load<V>(omega) + half * simd::load<V>(inv_inertia) * t);
+    return {v_lo, v_hi};
 }
 
-/// Phase B for the four discs i0 .. i0 + 3, a disc per lane: the same
-/// operations, in the same order, as gather_disc() for each (gravity, the
-/// owned pairs, the incoming pairs, the walls, the kick), so the results
-/// are the same bit for bit. Lanes save what a disc at a time spends moving
-/// scalars: the torque's serial sums take no lane extractions, the counts,
-/// masses and the kick's columns load as vectors, and a slot's mask is one
-/// compare for four discs.
-[[gnu::always_inline]] inline void gather_quad(const GatherData& d, std::size_t i0) {
+/// Phase B for the O::n discs i0 .., a disc per lane: the same operations,
+/// in the same order, as gather_disc() for each (gravity, the owned pairs,
+/// the incoming pairs, the walls, the kick), so the results are the same
+/// bit for bit. Lanes save what a disc at a time spends moving scalars: the
+/// torque's serial sums take no lane extractions, the counts, masses and the
+/// kick's columns load as vectors, and a slot's mask is one compare for all
+/// the lanes' discs.
+template <class O>
+[[gnu::always_inline]] inline void gather_lanes(const GatherData& d, std::size_t i0) {
+    using V = typename O::V;
+    using M = typename O::M;
+    using IV = typename O::IV;
+    constexpr std::size_t n = O::n;
     const std::uint32_t* ob = d.begin + i0;
     const std::uint32_t* ib = d.in_begin + i0;
     // Slots past a disc's own pairs load a valid pair (then masked): the
     // last discs, whose four slots could run past the end, go one by one.
-    if (ob[3] + 4 > d.npairs || ib[3] + 4 > d.npairs) {
-        for (std::size_t l = 0; l < kLanes; ++l) gather_disc(d, i0 + l);
+    if (ob[n - 1] + 4 > d.npairs || ib[n - 1] + 4 > d.npairs) {
+        for (std::size_t l = 0; l < n; ++l) gather_disc(d, i0 + l);
         return;
     }
-    using v4i = std::int32_t __attribute__((vector_size(16)));
-    using v2l = long long __attribute__((vector_size(16)));
     // The counts (0 to a few dozen: int32 and double hold them exactly).
-    const v4i on_i = simd::load<v4i>(ob + 1) - simd::load<v4i>(ob);
-    const v4i in_i = simd::load<v4i>(ib + 1) - simd::load<v4i>(ib);
-    const vd on = __builtin_convertvector(on_i, vd), in = __builtin_convertvector(in_i, vd);
-    const vd ri = simd::load<vd>(d.radius + i0);
-    const vd m = simd::load<vd>(d.mass + i0);
-    vd fx = m * d.gravity.x, fy = m * d.gravity.y;
-    vd t{};
-    const vd minus0 = {-0.0, -0.0, -0.0, -0.0};
-    std::size_t OO[kLanes];  // the owned pairs' byte offsets into a double column
-    for (std::size_t l = 0; l < kLanes; ++l) OO[l] = opaque(std::size_t{ob[l]} * sizeof(double));
-    // Owned slots 0-3: c of a disc's four slots is one load; a 4 × 4
-    // transpose turns the four discs' rows into the slots' lanes.
-    vd oc[4];
-    {
-        const vd c0 = simd::load<vd>(reinterpret_cast<const char*>(d.c) + OO[0]);
-        const vd c1 = simd::load<vd>(reinterpret_cast<const char*>(d.c) + OO[1]);
-        const vd c2 = simd::load<vd>(reinterpret_cast<const char*>(d.c) + OO[2]);
-        const vd c3 = simd::load<vd>(reinterpret_cast<const char*>(d.c) + OO[3]);
-        const vd lo01 = __builtin_shufflevector(c0, c1, 0, 4, 2, 6), hi01 = __builtin_shufflevector(c0, c1, 1, 5, 3, 7);
-        const vd lo23 = __builtin_shufflevector(c2, c3, 0, 4, 2, 6), hi23 = __builtin_shufflevector(c2, c3, 1, 5, 3, 7);
-        oc[0] = __builtin_shufflevector(lo01, lo23, 0, 1, 4, 5);
-        oc[1] = __builtin_shufflevector(hi01, hi23, 0, 1, 4, 5);
-        oc[2] = __builtin_shufflevector(lo01, lo23, 2, 3, 6, 7);
-        oc[3] = __builtin_shufflevector(hi01, hi23, 2, 3, 6, 7);
-    }
-    const auto owned = [&](std::size_t s, const std::size_t* off, vd gc) {
-        vd gx, gy;
-        gather_vec2_off(d.f, off, gx, gy);
-        const vm use = (vd{} + static_cast<double>(s)) < on;
-        fx += use ? gx : minus0;  // x + -0.0 == x for every x
-        fy += use ? gy : minus0;
-        t -= ri * (use ? gc : vd{});
+    const IV on_i = simd::load<IV>(ob + 1) - simd::load<IV>(ob);
+    const IV in_i = simd::load<IV>(ib + 1) - simd::load<IV>(ib);
+    const V on = __builtin_convertvector(on_i, V), in = __builtin_convertvector(in_i, V);
+    const V ri = simd::load<V>(d.radius + i0);
+    const V m = simd::load<V>(d.mass + i0);
+    V fx = m * d.gravity.x, fy = m * d.gravity.y;
+    V t{};
+    const V minus0 = -V{};  // -0.0 in every lane
+    std::size_t OO[n];  // the owned pairs' byte offsets into a double column
+    for (std::size_t l = 0; l < n; ++l) OO[l] = opaque(std::size_t{ob[l]} * sizeof(double));
+    // Owned slots 0-3: c of a disc's four slots is one load; 4 × 4
+    // transposes turn the discs' rows into the slots' lanes.
+    V oc[4];
+    O::owned_c(d.c, OO, oc);
+    const auto owned = [&](std::size_t s, const std::size_t* off, V gc) {
+        V gx, gy;
+        O::gather_vec2(d.f, off, gx, gy);
+        const M use = O::lt(V{} + static_cast<double>(s), on);
+        fx += O::select(use, gx, minus0);  // x + -0.0 == x for every x
+        fy += O::select(use, gy, minus0);
+        t -= ri * O::keep(use, gc);
     };
     const auto incoming = [&](std::size_t s, const std::size_t* off) {
-        vd gx, gy;
-        gather_vec2_off(d.f, off, gx, gy);
-        const vd gc = lanes([&](std::size_t l) { return at_off(d.c, off[l]); });
-        const vm use = (vd{} + static_cast<double>(s)) < in;
-        fx -= use ? gx : vd{};  // x - +0.0 == x for every x
-        fy -= use ? gy : vd{};
-        t -= ri * (use ? gc : vd{});
+        V gx, gy;
+        O::gather_vec2(d.f, off, gx, gy);
+        const V gc = O::lanes([&](std::size_t l) { return at_off(d.c, off[l]); });
+        const M use = O::lt(V{} + static_cast<double>(s), in);
+        fx -= O::keep(use, gx);  // x - +0.0 == x for every x
+        fy -= O::keep(use, gy);
+        t -= ri * O::keep(use, gc);
     };
     for (std::size_t s = 0; s < 4; ++s) {
-        const std::size_t off[kLanes] = {OO[0] + 8 * s, OO[1] + 8 * s, OO[2] + 8 * s, OO[3] + 8 * s};
+        std::size_t off[n];
+        for (std::size_t l = 0; l < n; ++l) off[l] = OO[l] + 8 * s;
         owned(s, off, oc[s]);
     }
     // More than four of either (about one disc in a hundred): the further
     // slots, a lane past its count reading its first (masked).
-    const v4i big = (on_i > 4) | (in_i > 4);
-    const v2l big2 = reinterpret_cast<v2l>(big);
-    const bool more = (big2[0] | big2[1]) != 0;
+    const IV big = (on_i > 4) | (in_i > 4);
+    std::uint64_t words[sizeof(IV) / 8];
+    __builtin_memcpy(words, &big, sizeof words);
+    std::uint64_t any_big = 0;
+    for (const std::uint64_t w : words) any_big |= w;
+    const bool more = any_big != 0;
     if (more) [[unlikely]] {
-        const std::int32_t on_max = std::max(std::max(on_i[0], on_i[1]), std::max(on_i[2], on_i[3]));
+        std::int32_t on_max = 0;
+        for (std::size_t l = 0; l < n; ++l) on_max = std::max(on_max, on_i[l]);
         for (std::int32_t s = 4; s < on_max; ++s) {
-            std::size_t off[kLanes];
-            for (std::size_t l = 0; l < kLanes; ++l) off[l] = s < on_i[l] ? OO[l] + 8 * s : OO[l];
-            owned(s, off, lanes([&](std::size_t l) { return at_off(d.c, off[l]); }));
+            std::size_t off[n];
+            for (std::size_t l = 0; l < n; ++l) off[l] = s < on_i[l] ? OO[l] + 8 * s : OO[l];
+            owned(s, off, O::lanes([&](std::size_t l) { return at_off(d.c, off[l]); }));
         }
     }
     for (std::size_t s = 0; s < 4; ++s) {
-        std::size_t off[kLanes];
-        for (std::size_t l = 0; l < kLanes; ++l) off[l] = opaque(std::size_t{d.in_pair[ib[l] + s]} * sizeof(double));
+        std::size_t off[n];
+        for (std::size_t l = 0; l < n; ++l) off[l] = opaque(std::size_t{d.in_pair[ib[l] + s]} * sizeof(double));
         incoming(s, off);
     }
     if (more) [[unlikely]] {
-        const std::int32_t in_max = std::max(std::max(in_i[0], in_i[1]), std::max(in_i[2], in_i[3]));
+        std::int32_t in_max = 0;
+        for (std::size_t l = 0; l < n; ++l) in_max = std::max(in_max, in_i[l]);
         for (std::int32_t s = 4; s < in_max; ++s) {
-            std::size_t off[kLanes];
-            for (std::size_t l = 0; l < kLanes; ++l)
+            std::size_t off[n];
+            for (std::size_t l = 0; l < n; ++l)
                 off[l] = std::size_t{d.in_pair[s < in_i[l] ? ib[l] + s : ib[l]]} * sizeof(double);
             incoming(s, off);
         }
     }
-    if (d.wall_begin[i0] != d.wall_begin[i0 + kLanes]) {  // a wall candidate: one disc at a time
-        for (std::size_t l = 0; l < kLanes; ++l) {
+    if (d.wall_begin[i0] != d.wall_begin[i0 + n]) {  // a wall candidate: one disc at a time
+        for (std::size_t l = 0; l < n; ++l) {
             Vec2 f = {fx[l], fy[l]};
             double tl = t[l];
             wall_contacts(d, i0 + l, f, tl);
@@ -610,20 +629,21 @@ template <class O>
             t[l] = tl;
         }
     }
-    const vd f01 = __builtin_shufflevector(fx, fy, 0, 4, 1, 5);  // {fx0, fy0, fx1, fy1}
-    const vd f23 = __builtin_shufflevector(fx, fy, 2, 6, 3, 7);
-    simd::store(d.force + i0, f01);
-    simd::store(d.force + i0 + 2, f23);
+    const V f_lo = O::zip_lo(fx, fy), f_hi = O::zip_hi(fx, fy);  // {fx0, fy0, fx1, fy1, ...}
+    simd::store(d.force + i0, f_lo);
+    simd::store(d.force + i0 + n / 2, f_hi);
     simd::store(d.torque + i0, t);
-    if (d.kick) kick_quad(d.v + i0, d.omega + i0, d.inv_mass + i0, d.inv_inertia + i0, f01, f23, t, 0.5 * d.dt);
+    if (d.kick) kick_lanes<O>(d.v + i0, d.omega + i0, d.inv_mass + i0, d.inv_inertia + i0, f_lo, f_hi, t, 0.5 * d.dt);
 }
 
-template <bool kQuads>
+/// Discs [begin, end): O::n at a time (gather_lanes), the rest one by one;
+/// O = void: one by one (the baseline version).
+template <class O>
 [[gnu::always_inline]] inline void gather_body(const GatherData& dref, std::size_t begin, std::size_t end) {
     const GatherData d = dref;
     std::size_t i = begin;
-    if constexpr (kQuads)
-        for (; i + kLanes <= end; i += kLanes) gather_quad(d, i);
+    if constexpr (!std::is_void_v<O>)
+        for (; i + O::n <= end; i += O::n) gather_lanes<O>(d, i);
     for (; i < end; ++i) gather_disc(d, i);
 }
 
@@ -651,7 +671,7 @@ template <class O>
 /// kick_drift_disc for discs i0 .. i0 + 3: {v_x, v_y} and {x, y} of two
 /// discs a vector, the rest a disc per lane; the same operations.
 [[gnu::always_inline]] inline vd kick_drift_quad(const KickData& d, std::size_t i0, vd max_d2) {
-    const auto [v01, v23] = kick_quad(d.v + i0, d.omega + i0, d.inv_mass + i0, d.inv_inertia + i0,
+    const auto [v01, v23] = kick_lanes<Lanes4<true>>(d.v + i0, d.omega + i0, d.inv_mass + i0, d.inv_inertia + i0,
                                       simd::load<vd>(d.force + i0), simd::load<vd>(d.force + i0 + 2),
                                       simd::load<vd>(d.torque + i0), d.half);
     const vd w = simd::load<vd>(d.omega + i0);
@@ -685,7 +705,7 @@ template <bool kQuads>
     std::size_t i = begin;
     if constexpr (kQuads) {
         for (; i + kLanes <= end; i += kLanes)
-            kick_quad(d.v + i, d.omega + i, d.inv_mass + i, d.inv_inertia + i, simd::load<vd>(d.force + i),
+            kick_lanes<Lanes4<true>>(d.v + i, d.omega + i, d.inv_mass + i, d.inv_inertia + i, simd::load<vd>(d.force + i),
                       simd::load<vd>(d.force + i + 2), simd::load<vd>(d.torque + i), d.half);
     }
     for (; i < end; ++i) {
@@ -696,12 +716,12 @@ template <bool kQuads>
 
 // The three builds of each kernel: the bodies above inlined into functions
 // compiled for each ISA (the always_inline helpers take the caller's ISA).
-void gather_sse2(const GatherData& d, std::size_t b, std::size_t e) { gather_body<false>(d, b, e); }
+void gather_sse2(const GatherData& d, std::size_t b, std::size_t e) { gather_body<void>(d, b, e); }
 [[gnu::target("arch=x86-64-v3")]] void gather_avx2(const GatherData& d, std::size_t b, std::size_t e) {
-    gather_body<true>(d, b, e);
+    gather_body<Lanes4<true>>(d, b, e);
 }
 [[gnu::target("arch=x86-64-v4")]] void gather_avx512(const GatherData& d, std::size_t b, std::size_t e) {
-    gather_body<true>(d, b, e);
+    gather_body<Lanes4<true>>(d, b, e);  // eight lanes: 16% slower (eight discs' offsets spill)
 }
 void pairs_sse2(const PairKernelData& d, std::size_t b, std::size_t e) { pair_body<Lanes4<false>>(d, b, e); }
 [[gnu::target("arch=x86-64-v3")]] void pairs_avx2(const PairKernelData& d, std::size_t b, std::size_t e) {

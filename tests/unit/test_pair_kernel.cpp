@@ -5,8 +5,9 @@
 // compression), fixed discs (infinite mass), periodic images; and every law
 // variant: the benchmark's (raw damping, no clamp), damping ratio (sqrt of
 // m_eff) with the clamp, a tangential dashpot and cohesion, and a smooth law.
-// Ranges of every length mod 4 exercise the block tail. The gather (phase B)
-// is checked the same way against the plain per-disc sums and half kick.
+// Ranges of every length mod 8 exercise the block tails, in every kernel
+// version the CPU runs (eight lanes in the AVX-512 one). The gather (phase
+// B) is checked the same way against the plain per-disc sums and half kick.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -120,7 +121,19 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
 
 }  // namespace
 
+/// The kernel versions this CPU runs (each test restores the best one).
+std::vector<KernelIsa> runnable_isas() {
+    std::vector<KernelIsa> v = {KernelIsa::sse2};
+    if (best_kernel_isa() != KernelIsa::sse2) v.push_back(KernelIsa::avx2);
+    if (best_kernel_isa() == KernelIsa::avx512) v.push_back(KernelIsa::avx512);
+    return v;
+}
+
 TEST(PairKernel, BitIdenticalToThePerPairLoop) {
+    // In every kernel version (four lanes, and eight in the AVX-512 one).
+    for (const KernelIsa isa : runnable_isas()) {
+    SCOPED_TRACE(isa_name(isa));
+    select_kernel_isa(isa_name(isa));
     for (const std::uint64_t seed : {1u, 2u, 3u}) {
         for (const LawParams& law : {bench_law(), ratio_law(), smooth_law()}) {
             for (const bool update : {true, false}) {
@@ -130,7 +143,7 @@ TEST(PairKernel, BitIdenticalToThePerPairLoop) {
                 const double dt = 1e-4;
                 ContactStore want = s.cs;
                 for (std::size_t k = 0; k < n; ++k) reference_pair(s.p, want, k, s.W, dt, law, update);
-                // The ranges [0, a), [a, b), [b, n) with a, b of all residues mod 4.
+                // Ranges whose lengths take every residue mod 8 over the seeds.
                 ContactStore got = s.cs;
                 std::vector<double> gn(n), gs(n);
                 pair_dashpots(law, s.p.mass.data(), s.p.inv_mass.data(), 0.0, got.i.data(), got.j.data(), 0, n, gn.data(),
@@ -142,24 +155,16 @@ TEST(PairKernel, BitIdenticalToThePerPairLoop) {
                                         gn.data(),     gs.data(),         got.xi.data(),    got.f.data(),
                                         got.c.data(),  s.W,               dt,               law,
                                         update};
-                const std::size_t a = 101 + seed, b = n / 2 + 2 * seed;
-                eval_pair_range(kd, 0, a);
-                eval_pair_range(kd, a, b);
-                eval_pair_range(kd, b, n);
+                const std::size_t cuts[] = {0, 5 + seed, 18 + 3 * seed, 101 + seed, n / 2 + 2 * seed, n};
+                for (std::size_t c = 0; c + 1 < std::size(cuts); ++c) eval_pair_range(kd, cuts[c], cuts[c + 1]);
                 EXPECT_TRUE(same_bits(got.f, want.f)) << "seed " << seed;
                 EXPECT_TRUE(same_bits(got.c, want.c)) << "seed " << seed;
                 EXPECT_TRUE(same_bits(got.xi, want.xi)) << "seed " << seed;
             }
         }
     }
-}
-
-/// The kernel versions this CPU runs (each test restores the best one).
-std::vector<KernelIsa> runnable_isas() {
-    std::vector<KernelIsa> v = {KernelIsa::sse2};
-    if (best_kernel_isa() != KernelIsa::sse2) v.push_back(KernelIsa::avx2);
-    if (best_kernel_isa() == KernelIsa::avx512) v.push_back(KernelIsa::avx512);
-    return v;
+    }
+    select_kernel_isa(nullptr);
 }
 
 TEST(PairKernel, GatherBitIdenticalToThePlainSums) {

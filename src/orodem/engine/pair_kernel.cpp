@@ -282,18 +282,23 @@ template <class O>
 [[gnu::always_inline]] inline Block<O> load_block(const PairKernelData& d, const std::size_t* K, bool contiguous) {
     using V = typename O::V;
     constexpr std::size_t n = O::n;
-    std::size_t I[n], J[n];  // the discs' byte offsets into the double columns
-    for (std::size_t l = 0; l < n; ++l) {
-        I[l] = opaque(std::size_t{d.i[K[l]]} * sizeof(double));
-        J[l] = opaque(std::size_t{d.j[K[l]]} * sizeof(double));
-    }
     Block<O> b;
-    O::gather_vec2(d.x, I, b.xix, b.xiy);
-    O::gather_vec2(d.x, J, b.xjx, b.xjy);
-    O::gather_vec2(d.v, I, b.vix, b.viy);
-    O::gather_vec2(d.v, J, b.vjx, b.vjy);
-    b.wi = O::lanes_in_registers([&](std::size_t l) { return at_off(d.omega, I[l]); });
-    b.wj = O::lanes_in_registers([&](std::size_t l) { return at_off(d.omega, J[l]); });
+    // Disc i's columns, then disc j's: in eight lanes, the sixteen byte
+    // offsets live at once would not fit the general registers.
+    {
+        std::size_t I[n];  // the discs' byte offsets into the double columns
+        for (std::size_t l = 0; l < n; ++l) I[l] = opaque(std::size_t{d.i[K[l]]} * sizeof(double));
+        O::gather_vec2(d.x, I, b.xix, b.xiy);
+        O::gather_vec2(d.v, I, b.vix, b.viy);
+        b.wi = O::lanes_in_registers([&](std::size_t l) { return at_off(d.omega, I[l]); });
+    }
+    {
+        std::size_t J[n];
+        for (std::size_t l = 0; l < n; ++l) J[l] = opaque(std::size_t{d.j[K[l]]} * sizeof(double));
+        O::gather_vec2(d.x, J, b.xjx, b.xjy);
+        O::gather_vec2(d.v, J, b.vjx, b.vjy);
+        b.wj = O::lanes_in_registers([&](std::size_t l) { return at_off(d.omega, J[l]); });
+    }
     // Periodic images and bonds are rare in a block (all its bytes zero): then
     // skip the byte-to-double conversions.
     typename O::Bits shifts = 1, bonds = 1;
@@ -668,45 +673,49 @@ template <class O>
     return std::max(max_d2, norm2(d.x[i] - d.x_ref[i]));
 }
 
-/// kick_drift_disc for discs i0 .. i0 + 3: {v_x, v_y} and {x, y} of two
+/// kick_drift_disc for the O::n discs i0 ..: {v_x, v_y} and {x, y} of n/2
 /// discs a vector, the rest a disc per lane; the same operations.
-[[gnu::always_inline]] inline vd kick_drift_quad(const KickData& d, std::size_t i0, vd max_d2) {
-    const auto [v01, v23] = kick_lanes<Lanes4<true>>(d.v + i0, d.omega + i0, d.inv_mass + i0, d.inv_inertia + i0,
-                                      simd::load<vd>(d.force + i0), simd::load<vd>(d.force + i0 + 2),
-                                      simd::load<vd>(d.torque + i0), d.half);
-    const vd w = simd::load<vd>(d.omega + i0);
-    const vd x01 = simd::load<vd>(d.x + i0) + d.dt * v01, x23 = simd::load<vd>(d.x + i0 + 2) + d.dt * v23;
-    simd::store(d.x + i0, x01);
-    simd::store(d.x + i0 + 2, x23);
-    simd::store(d.theta + i0, simd::load<vd>(d.theta + i0) + d.dt * w);
-    const vd e01 = x01 - simd::load<vd>(d.x_ref + i0), e23 = x23 - simd::load<vd>(d.x_ref + i0 + 2);
-    const vd s01 = e01 * e01, s23 = e23 * e23;
-    const vd r2 = even(s01, s23) + odd(s01, s23);
-    return max_d2 < r2 ? r2 : max_d2;  // std::max, lane by lane
+template <class O, class V = typename O::V>
+[[gnu::always_inline]] inline V kick_drift_lanes(const KickData& d, std::size_t i0, V max_d2) {
+    constexpr std::size_t h = O::n / 2;
+    const auto [v_lo, v_hi] =
+        kick_lanes<O>(d.v + i0, d.omega + i0, d.inv_mass + i0, d.inv_inertia + i0, simd::load<V>(d.force + i0),
+                      simd::load<V>(d.force + i0 + h), simd::load<V>(d.torque + i0), d.half);
+    const V w = simd::load<V>(d.omega + i0);
+    const V x_lo = simd::load<V>(d.x + i0) + d.dt * v_lo, x_hi = simd::load<V>(d.x + i0 + h) + d.dt * v_hi;
+    simd::store(d.x + i0, x_lo);
+    simd::store(d.x + i0 + h, x_hi);
+    simd::store(d.theta + i0, simd::load<V>(d.theta + i0) + d.dt * w);
+    const V e_lo = x_lo - simd::load<V>(d.x_ref + i0), e_hi = x_hi - simd::load<V>(d.x_ref + i0 + h);
+    const V s_lo = e_lo * e_lo, s_hi = e_hi * e_hi;
+    const V r2 = O::xs_of(s_lo, s_hi) + O::ys_of(s_lo, s_hi);
+    return O::select(O::lt(max_d2, r2), r2, max_d2);  // std::max, lane by lane
 }
 
-template <bool kQuads>
+/// Discs [begin, end): O::n at a time, the rest one by one (O = void: all).
+template <class O>
 [[gnu::always_inline]] inline double kick_drift_body(const KickData& dref, std::size_t begin, std::size_t end,
                                                      double max_d2) {
     const KickData d = dref;  // a local copy: the stores cannot force reloads of the column pointers
     std::size_t i = begin;
-    if constexpr (kQuads) {
-        vd m = vd{} + max_d2;
-        for (; i + kLanes <= end; i += kLanes) m = kick_drift_quad(d, i, m);
-        for (std::size_t l = 0; l < kLanes; ++l) max_d2 = std::max(max_d2, m[l]);  // max is exact in any order
+    if constexpr (!std::is_void_v<O>) {
+        typename O::V m = typename O::V{} + max_d2;
+        for (; i + O::n <= end; i += O::n) m = kick_drift_lanes<O>(d, i, m);
+        for (std::size_t l = 0; l < O::n; ++l) max_d2 = std::max(max_d2, m[l]);  // max is exact in any order
     }
     for (; i < end; ++i) max_d2 = kick_drift_disc(d, i, max_d2);
     return max_d2;
 }
 
-template <bool kQuads>
+template <class O>
 [[gnu::always_inline]] inline void kick_body(const KickData& dref, std::size_t begin, std::size_t end) {
     const KickData d = dref;
     std::size_t i = begin;
-    if constexpr (kQuads) {
-        for (; i + kLanes <= end; i += kLanes)
-            kick_lanes<Lanes4<true>>(d.v + i, d.omega + i, d.inv_mass + i, d.inv_inertia + i, simd::load<vd>(d.force + i),
-                      simd::load<vd>(d.force + i + 2), simd::load<vd>(d.torque + i), d.half);
+    if constexpr (!std::is_void_v<O>) {
+        using V = typename O::V;
+        for (; i + O::n <= end; i += O::n)
+            kick_lanes<O>(d.v + i, d.omega + i, d.inv_mass + i, d.inv_inertia + i, simd::load<V>(d.force + i),
+                          simd::load<V>(d.force + i + O::n / 2), simd::load<V>(d.torque + i), d.half);
     }
     for (; i < end; ++i) {
         d.v[i] += (d.half * d.inv_mass[i]) * d.force[i];
@@ -732,20 +741,20 @@ void pairs_sse2(const PairKernelData& d, std::size_t b, std::size_t e) { pair_bo
 }
 
 double kick_drift_sse2(const KickData& d, std::size_t b, std::size_t e, double m) {
-    return kick_drift_body<false>(d, b, e, m);
+    return kick_drift_body<void>(d, b, e, m);
 }
 [[gnu::target("arch=x86-64-v3")]] double kick_drift_avx2(const KickData& d, std::size_t b, std::size_t e, double m) {
-    return kick_drift_body<true>(d, b, e, m);
+    return kick_drift_body<Lanes4<true>>(d, b, e, m);
 }
 [[gnu::target("arch=x86-64-v4")]] double kick_drift_avx512(const KickData& d, std::size_t b, std::size_t e, double m) {
-    return kick_drift_body<true>(d, b, e, m);
+    return kick_drift_body<Lanes8>(d, b, e, m);
 }
-void kick_sse2(const KickData& d, std::size_t b, std::size_t e) { kick_body<false>(d, b, e); }
+void kick_sse2(const KickData& d, std::size_t b, std::size_t e) { kick_body<void>(d, b, e); }
 [[gnu::target("arch=x86-64-v3")]] void kick_avx2(const KickData& d, std::size_t b, std::size_t e) {
-    kick_body<true>(d, b, e);
+    kick_body<Lanes4<true>>(d, b, e);
 }
 [[gnu::target("arch=x86-64-v4")]] void kick_avx512(const KickData& d, std::size_t b, std::size_t e) {
-    kick_body<true>(d, b, e);
+    kick_body<Lanes8>(d, b, e);
 }
 
 struct Kernels {

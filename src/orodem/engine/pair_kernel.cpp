@@ -25,11 +25,12 @@
 // masses as pair columns computed then, not every step: the dashpots (m_eff;
 // pair_dashpots) and the radii (pair_radii).
 //
-// Phase B and the integrator's passes take four discs a time in the AVX
-// versions (gather_lanes, kick_drift_quad): a disc per lane, so the serial
-// sums of one disc (its force and torque, term by term) stay in order while
-// four run side by side. Eight lanes do not pay there: eight discs' pair
-// offsets do not fit the general registers.
+// Phase B takes four discs a time in the AVX versions (gather_lanes): a
+// disc per lane, so the serial sums of one disc (its force and torque, term
+// by term) stay in order while four run side by side. Eight lanes do not pay
+// there: eight discs' pair offsets do not fit the general registers. The
+// integrator's passes (kick_drift_lanes, kick_lanes) take four discs a time
+// in the AVX2 version and eight in the AVX-512 one.
 #include "orodem/engine/pair_kernel.hpp"
 
 #include <string_view>
@@ -53,7 +54,6 @@ using simd::v2d;
 using vd = simd::v4d;
 using vm = simd::v4m;
 using simd::lanes;
-constexpr std::size_t kLanes = 4;
 
 [[gnu::always_inline]] inline vd cat(v2d a, v2d b) { return __builtin_shufflevector(a, b, 0, 1, 2, 3); }
 [[gnu::always_inline]] inline vd even(vd a, vd b) { return __builtin_shufflevector(a, b, 0, 2, 4, 6); }
@@ -455,6 +455,13 @@ template <class O>
     }
 }
 
+/// The half kick of one disc: Simulation::kick()'s operations.
+[[gnu::always_inline]] inline void kick_disc(Vec2& v, double& omega, double inv_mass, double inv_inertia, Vec2 f,
+                                             double t, double half) {
+    v += (half * inv_mass) * f;
+    omega += half * inv_inertia * t;
+}
+
 /// Phase B for one disc.
 [[gnu::always_inline]] inline void gather_disc(const GatherData& d, std::size_t i) {
     // f = m g, then f += f_k over the owned pairs and f -= f_k over the
@@ -511,12 +518,7 @@ template <class O>
     wall_contacts(d, i, f, t);
     d.force[i] = f;
     d.torque[i] = t;
-    if (d.kick) {
-        // The second half kick, fused: the same operations as Simulation::kick().
-        const double half = 0.5 * d.dt;
-        d.v[i] += (half * d.inv_mass[i]) * f;
-        d.omega[i] += half * d.inv_inertia[i] * t;
-    }
+    if (d.kick) kick_disc(d.v[i], d.omega[i], d.inv_mass[i], d.inv_inertia[i], f, t, 0.5 * d.dt);  // fused
 }
 
 /// The half kick of O::n discs (Simulation::kick()'s operations): v and F
@@ -666,8 +668,7 @@ template <class O>
 
 /// The first half kick and the drift of disc i (Simulation's integrator, operation for operation).
 [[gnu::always_inline]] inline double kick_drift_disc(const KickData& d, std::size_t i, double max_d2) {
-    d.v[i] += (d.half * d.inv_mass[i]) * d.force[i];
-    d.omega[i] += d.half * d.inv_inertia[i] * d.torque[i];
+    kick_disc(d.v[i], d.omega[i], d.inv_mass[i], d.inv_inertia[i], d.force[i], d.torque[i], d.half);
     d.x[i] += d.dt * d.v[i];
     d.theta[i] += d.dt * d.omega[i];
     return std::max(max_d2, norm2(d.x[i] - d.x_ref[i]));
@@ -717,10 +718,7 @@ template <class O>
             kick_lanes<O>(d.v + i, d.omega + i, d.inv_mass + i, d.inv_inertia + i, simd::load<V>(d.force + i),
                           simd::load<V>(d.force + i + O::n / 2), simd::load<V>(d.torque + i), d.half);
     }
-    for (; i < end; ++i) {
-        d.v[i] += (d.half * d.inv_mass[i]) * d.force[i];
-        d.omega[i] += d.half * d.inv_inertia[i] * d.torque[i];
-    }
+    for (; i < end; ++i) kick_disc(d.v[i], d.omega[i], d.inv_mass[i], d.inv_inertia[i], d.force[i], d.torque[i], d.half);
 }
 
 // The three builds of each kernel: the bodies above inlined into functions

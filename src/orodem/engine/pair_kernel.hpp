@@ -4,9 +4,9 @@
 //   B  gather_range: per disc, gravity + its pair forces + its wall contacts,
 //      then (optionally) the second half kick; four discs at a time in SIMD
 //      lanes in the AVX2 and AVX-512 versions;
-// and the integrator's per-disc passes, four discs at a time likewise:
-//      kick_drift_range (first half kick, drift, the rebuild test's
-//      displacement) and kick_range (second half kick).
+// and the integrator's per-disc passes, four discs at a time in the AVX2
+// version and eight in the AVX-512 one: kick_drift_range (first half kick,
+// drift, the rebuild test's displacement) and kick_range (second half kick).
 //
 // Bit-identity: every lane performs exactly the IEEE operations, in the same
 // order, that eval_contact() and the scalar pair loop perform for one pair

@@ -274,6 +274,12 @@ namespace {
 /// own operations, and a maximum is exact in any order.
 constexpr long long kKickChunk = 1024;
 
+/// The number of kKickChunk chunks of discs [b, e), and chunk c's discs.
+long long kick_chunks(long long b, long long e) { return (e - b + kKickChunk - 1) / kKickChunk; }
+std::pair<std::size_t, std::size_t> kick_chunk(long long b, long long e, long long c) {
+    return {static_cast<std::size_t>(b + c * kKickChunk), static_cast<std::size_t>(std::min(e, b + (c + 1) * kKickChunk))};
+}
+
 }  // namespace
 
 KickData Simulation::kick_data() {
@@ -310,11 +316,12 @@ void Simulation::kick_drift() {
     double max_d2 = max_disp2_;
     long long b = 0, e = 0;
     const bool lazy = drift_range(b, e);
-    const long long chunks = (e - b + kKickChunk - 1) / kKickChunk;
+    const long long chunks = kick_chunks(b, e);
 #pragma omp parallel for schedule(static) if(e - b >= kParallelMin) reduction(max : max_d2)
-    for (long long c = 0; c < chunks; ++c)
-        max_d2 = kick_drift_range(kd, static_cast<std::size_t>(b + c * kKickChunk),
-                                  static_cast<std::size_t>(std::min(e, b + (c + 1) * kKickChunk)), max_d2);
+    for (long long c = 0; c < chunks; ++c) {
+        const auto [cb, ce] = kick_chunk(b, e, c);
+        max_d2 = kick_drift_range(kd, cb, ce, max_d2);
+    }
     end_drift(lazy, max_d2);
 }
 
@@ -342,11 +349,12 @@ bool Simulation::step_in_one_region(double wall_move) {
     double t_kicked = 0.0, t_pairs_done = 0.0;
 #pragma omp parallel if(static_cast<long long>(n) >= kParallelMin)
     {
-        const long long nn = static_cast<long long>(n), chunks = (nn + kKickChunk - 1) / kKickChunk;
+        const long long nn = static_cast<long long>(n), chunks = kick_chunks(0, nn);
 #pragma omp for schedule(static) reduction(max : max_d2)
-        for (long long c = 0; c < chunks; ++c)
-            max_d2 = kick_drift_range(kk, static_cast<std::size_t>(c * kKickChunk),
-                                      static_cast<std::size_t>(std::min(nn, (c + 1) * kKickChunk)), max_d2);
+        for (long long c = 0; c < chunks; ++c) {
+            const auto [cb, ce] = kick_chunk(0, nn, c);
+            max_d2 = kick_drift_range(kk, cb, ce, max_d2);
+        }
         // (the loop's barrier: max_d2 is final and every position is in place)
         const bool need = force_rebuild_ || std::sqrt(max_d2) + wall_move > 0.5 * params.skin;
 #pragma omp master
@@ -391,11 +399,12 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
     for (const auto& bd : boundaries) by_range = by_range && bd->force_hook() != Boundary::ForceHook::whole;
 #pragma omp parallel
     {
-        const long long chunks = (de - db + kKickChunk - 1) / kKickChunk;
+        const long long chunks = kick_chunks(db, de);
 #pragma omp for schedule(static) reduction(max : max_d2)
-        for (long long c = 0; c < chunks; ++c)
-            max_d2 = kick_drift_range(kk, static_cast<std::size_t>(db + c * kKickChunk),
-                                      static_cast<std::size_t>(std::min(de, db + (c + 1) * kKickChunk)), max_d2);
+        for (long long c = 0; c < chunks; ++c) {
+            const auto [cb, ce] = kick_chunk(db, de, c);
+            max_d2 = kick_drift_range(kk, cb, ce, max_d2);
+        }
 #pragma omp single
         {
             stamp[0] = omp_get_wtime();
@@ -457,11 +466,12 @@ void Simulation::kick() {
     // Sleeping discs have inv_mass = inv_inertia = 0: only the awake range.
     const KickData kd = kick_data();
     const long long b = awake_begin_, e = awake_end_;
-    const long long chunks = (e - b + kKickChunk - 1) / kKickChunk;
+    const long long chunks = kick_chunks(b, e);
 #pragma omp parallel for schedule(static) if(e - b >= kParallelMin)
-    for (long long c = 0; c < chunks; ++c)
-        kick_range(kd, static_cast<std::size_t>(b + c * kKickChunk),
-                   static_cast<std::size_t>(std::min(e, b + (c + 1) * kKickChunk)));
+    for (long long c = 0; c < chunks; ++c) {
+        const auto [cb, ce] = kick_chunk(b, e, c);
+        kick_range(kd, cb, ce);
+    }
 }
 
 bool Simulation::needs_rebuild(double wall_move) const {

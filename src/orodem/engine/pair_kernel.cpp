@@ -19,7 +19,8 @@
 // stores of the pair columns, each disc index held as one byte offset that
 // addresses both column widths (opaque), x and v into lanes by in-lane
 // unpacks (gather_vec2_off), ω built in vector registers at once
-// (lanes_now), the sliding branch skipped when no lane of a block slides
+// (lanes_now), in eight lanes every disc column loaded straight into its
+// quarter of the vector (Lanes8::quad, Lanes8::gather), the sliding branch skipped when no lane of a block slides
 // (about nine blocks of four in ten) and tested with one instruction
 // (any_lane, Lanes8::any), and what changes only with the pairs or the
 // masses as pair columns computed then, not every step: the dashpots (m_eff;
@@ -170,9 +171,9 @@ struct Lanes4 {
     [[gnu::always_inline]] static V lanes(F&& f) {
         return simd::lanes(f);
     }
-    template <class F>
-    [[gnu::always_inline]] static V lanes_in_registers(F&& f) {
-        return lanes_now(f);
+    /// The doubles at byte offsets off[0 .. 3] of column a, in lanes 0 .. 3.
+    [[gnu::always_inline]] static V gather(const double* a, const std::size_t* off) {
+        return lanes_now([&](std::size_t l) { return at_off(a, off[l]); });
     }
     [[gnu::always_inline]] static void gather_vec2(const Vec2* a, const std::size_t* off, V& xs, V& ys) {
         gather_vec2_off(a, off, xs, ys);
@@ -233,20 +234,48 @@ struct Lanes8 {
         const v8m magnitude = v8m{} + 0x7fffffffffffffffLL;
         return reinterpret_cast<V>(reinterpret_cast<v8m>(a) & magnitude);
     }
-    [[gnu::always_inline]] static V cat4(v2d a, v2d b, v2d c, v2d e) {
-        return __builtin_shufflevector(cat(a, b), cat(c, e), 0, 1, 2, 3, 4, 5, 6, 7);
+    // The gathers below are inline asm: from vector-extension code GCC 12
+    // builds a zmm of four 16-byte loads with register inserts and a copy
+    // of each 256-bit half onto itself to zero the upper bits (53 such
+    // copies in phase A's loop); here the inserts take their operand from
+    // memory and nothing is copied.
+    /// The 16-byte values at a, b, c, e as the quarters of one vector.
+    [[gnu::always_inline]] static V quad(const v2d& a, const v2d& b, const v2d& c, const v2d& e) {
+        V r, t;
+        asm("vmovupd %2, %x0\n\t"
+            "vinsertf64x2 $1, %3, %t0, %t0\n\t"
+            "vmovupd %4, %x1\n\t"
+            "vinsertf64x2 $1, %5, %t1, %t1\n\t"
+            "vinsertf64x4 $1, %t1, %g0, %g0"
+            : "=&v"(r), "=&v"(t)
+            : "m"(a), "m"(b), "m"(c), "m"(e));
+        return r;
     }
-    template <class F>
-    [[gnu::always_inline]] static V lanes_in_registers(F&& f) {
-        v2d a = {f(0), f(1)}, b = {f(2), f(3)}, c = {f(4), f(5)}, e = {f(6), f(7)};
-        asm("" : "+x"(a), "+x"(b), "+x"(c), "+x"(e));
-        return cat4(a, b, c, e);
+    /// The doubles at byte offsets off[0 .. 7] of column a, in lanes 0 .. 7.
+    [[gnu::always_inline]] static V gather(const double* a, const std::size_t* off) {
+        const char* base = reinterpret_cast<const char*>(a);
+        const auto at = [&](std::size_t l) -> const double& { return *reinterpret_cast<const double*>(base + off[l]); };
+        V r, t, u;
+        asm("vmovsd %3, %x0\n\t"
+            "vmovhpd %4, %x0, %x0\n\t"
+            "vmovsd %5, %x1\n\t"
+            "vmovhpd %6, %x1, %x1\n\t"
+            "vinsertf64x2 $1, %x1, %t0, %t0\n\t"
+            "vmovsd %7, %x1\n\t"
+            "vmovhpd %8, %x1, %x1\n\t"
+            "vmovsd %9, %x2\n\t"
+            "vmovhpd %10, %x2, %x2\n\t"
+            "vinsertf64x2 $1, %x2, %t1, %t1\n\t"
+            "vinsertf64x4 $1, %t1, %g0, %g0"
+            : "=&v"(r), "=&v"(t), "=&v"(u)
+            : "m"(at(0)), "m"(at(1)), "m"(at(2)), "m"(at(3)), "m"(at(4)), "m"(at(5)), "m"(at(6)), "m"(at(7)));
+        return r;
     }
     /// As gather_vec2_off: quarters {0, 2, 4, 6} and {1, 3, 5, 7}, then in-lane unpacks.
     [[gnu::always_inline]] static void gather_vec2(const Vec2* a, const std::size_t* off, V& xs, V& ys) {
         const char* base = reinterpret_cast<const char*>(a);
-        const auto at = [&](std::size_t l) { return simd::load<v2d>(base + 2 * off[l]); };
-        const V lo = cat4(at(0), at(2), at(4), at(6)), hi = cat4(at(1), at(3), at(5), at(7));
+        const auto at = [&](std::size_t l) -> const v2d& { return *reinterpret_cast<const v2d*>(base + 2 * off[l]); };
+        const V lo = quad(at(0), at(2), at(4), at(6)), hi = quad(at(1), at(3), at(5), at(7));
         xs = __builtin_shufflevector(lo, hi, 0, 8, 2, 10, 4, 12, 6, 14);
         ys = __builtin_shufflevector(lo, hi, 1, 9, 3, 11, 5, 13, 7, 15);
     }
@@ -290,14 +319,14 @@ template <class O>
         for (std::size_t l = 0; l < n; ++l) I[l] = opaque(std::size_t{d.i[K[l]]} * sizeof(double));
         O::gather_vec2(d.x, I, b.xix, b.xiy);
         O::gather_vec2(d.v, I, b.vix, b.viy);
-        b.wi = O::lanes_in_registers([&](std::size_t l) { return at_off(d.omega, I[l]); });
+        b.wi = O::gather(d.omega, I);
     }
     {
         std::size_t J[n];
         for (std::size_t l = 0; l < n; ++l) J[l] = opaque(std::size_t{d.j[K[l]]} * sizeof(double));
         O::gather_vec2(d.x, J, b.xjx, b.xjy);
         O::gather_vec2(d.v, J, b.vjx, b.vjy);
-        b.wj = O::lanes_in_registers([&](std::size_t l) { return at_off(d.omega, J[l]); });
+        b.wj = O::gather(d.omega, J);
     }
     // Periodic images and bonds are rare in a block (all its bytes zero): then
     // skip the byte-to-double conversions.

@@ -16,6 +16,7 @@
 
 #include "orodem/core/hash.hpp"
 #include "orodem/core/parallel.hpp"
+#include "orodem/core/stealing_split.hpp"
 #include "orodem/engine/pair_kernel.hpp"
 
 namespace orodem {
@@ -152,18 +153,27 @@ std::pair<std::size_t, std::size_t> thread_range(std::size_t n, std::size_t alig
     return {std::min(n, align * (chunks * tid / nth)), std::min(n, align * (chunks * (tid + 1) / nth))};
 }
 
-/// Inside a parallel region, called by every thread: phase A over this
-/// thread's share of the pairs, a barrier, the master's clock read for the
-/// phase timers, then phase B over its share of the discs.
-void pairs_then_gather(const PairKernelData& kd, const GatherData& gd, std::size_t npairs, std::size_t n,
+/// Phases A and B in a parallel region: chunks of this many pairs and discs
+/// (StealingSplit), about 8 µs of work each on the pile.
+constexpr std::size_t kPairChunk = 2048, kDiscChunk = 1024;
+
+/// The threads of a parallel region over n items with `if(n >= kParallelMin)`.
+std::size_t team_for(std::size_t n) {
+    return static_cast<long long>(n) >= kParallelMin ? static_cast<std::size_t>(omp_get_max_threads()) : 1;
+}
+
+std::size_t this_thread() { return static_cast<std::size_t>(omp_get_thread_num()); }
+
+/// Inside a parallel region, called by every thread: phase A over the
+/// pairs' chunks (this thread's share first), a barrier, the master's clock
+/// read for the phase timers, then phase B over the discs' chunks.
+void pairs_then_gather(const PairKernelData& kd, const GatherData& gd, StealingSplit& pairs, StealingSplit& discs,
                        double& t_pairs_done) {
-    const auto [pb, pe] = thread_range(npairs, 64);
-    if (pb < pe) eval_pair_range(kd, pb, pe);
+    pairs.run(this_thread(), [&](std::size_t b, std::size_t e) { eval_pair_range(kd, b, e); });
 #pragma omp barrier
 #pragma omp master
     t_pairs_done = omp_get_wtime();
-    const auto [b, e] = thread_range(n, 8);
-    if (b < e) gather_range(gd, b, e);
+    discs.run(this_thread(), [&](std::size_t b, std::size_t e) { gather_range(gd, b, e); });
 }
 
 }  // namespace
@@ -250,9 +260,11 @@ void Simulation::pair_forces_gather_kick() {
     const PairKernelData kd = pair_kernel_data(true);
     const GatherData gd = gather_data(true, true);
     const std::size_t npairs = contacts.size(), n = particles.size();
+    pair_split_.reset(npairs, team_for(n), 64, kPairChunk);
+    disc_split_.reset(n, team_for(n), 8, kDiscChunk);
     double t_pairs_done = 0.0;
 #pragma omp parallel if(static_cast<long long>(n) >= kParallelMin)
-    pairs_then_gather(kd, gd, npairs, n, t_pairs_done);
+    pairs_then_gather(kd, gd, pair_split_, disc_split_, t_pairs_done);
     pairs_done_at_ = t_pairs_done;
 }
 
@@ -344,6 +356,8 @@ bool Simulation::step_in_one_region(double wall_move) {
     const PairKernelData kd = pair_kernel_data(true);
     const GatherData gd = gather_data(true, true);
     const std::size_t npairs = contacts.size(), n = particles.size();
+    pair_split_.reset(npairs, team_for(n), 64, kPairChunk);
+    disc_split_.reset(n, team_for(n), 8, kDiscChunk);
     double max_d2 = max_disp2_;
     bool rebuild = false;
     double t_kicked = 0.0, t_pairs_done = 0.0;
@@ -362,7 +376,7 @@ bool Simulation::step_in_one_region(double wall_move) {
             t_kicked = omp_get_wtime();
             rebuild = need;
         }
-        if (!need) pairs_then_gather(kd, gd, npairs, n, t_pairs_done);
+        if (!need) pairs_then_gather(kd, gd, pair_split_, disc_split_, t_pairs_done);
     }
     max_disp2_ = max_d2;
     kicked_at_ = t_kicked;
@@ -397,6 +411,9 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
     bool rebuild = false;
     bool by_range = true;  // no boundary needs a whole add_forces on one thread
     for (const auto& bd : boundaries) by_range = by_range && bd->force_hook() != Boundary::ForceHook::whole;
+    const std::size_t team = static_cast<std::size_t>(omp_get_max_threads());
+    pair_split_.reset(npairs, team, 64, kPairChunk);
+    disc_split_.reset(nawake, team, 8, kDiscChunk);
 #pragma omp parallel
     {
         const long long chunks = kick_chunks(db, de);
@@ -418,25 +435,34 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
             stamp[1] = omp_get_wtime();
         }  // (a barrier: every thread reads the same decision)
         if (!rebuild) {
-            const auto [pb, pe] = thread_range(npairs, 64);
-            if (pb < pe) eval_pair_range(kd, pair0 + pb, pair0 + pe);
+            pair_split_.run(this_thread(), [&](std::size_t b, std::size_t e) { eval_pair_range(kd, pair0 + b, pair0 + e); });
 #pragma omp barrier
 #pragma omp master
             stamp[2] = omp_get_wtime();
-            const auto [b, e] = thread_range(nawake, 8);
-            if (b < e) gather_range(gd, disc0 + b, disc0 + e);
             if (by_range) {
-                // This thread's discs: their base forces (the master's clock
-                // reads time its own share), then the kick below.
-#pragma omp master
-                stamp[3] = omp_get_wtime();
-                if (b < e)
+                // Chunk by chunk: the discs' gather, their base forces, their
+                // second half kick (sleeping discs have inv_mass =
+                // inv_inertia = 0). The master's clock reads time its own
+                // chunks' parts.
+                double t_gather = 0.0, t_base = 0.0;
+                disc_split_.run(this_thread(), [&](std::size_t b, std::size_t e) {
+                    const double t0 = omp_get_wtime();
+                    gather_range(gd, disc0 + b, disc0 + e);
+                    const double t1 = omp_get_wtime();
                     for (auto& bd : boundaries)
                         if (bd->force_hook() == Boundary::ForceHook::by_disc_range)
                             bd->add_forces_range(*this, disc0 + b, disc0 + e);
+                    t_gather += t1 - t0;
+                    t_base += omp_get_wtime() - t1;
+                    kick_range(kk, disc0 + b, disc0 + e);
+                });
 #pragma omp master
-                stamp[4] = omp_get_wtime();
+                {
+                    stamp[3] = stamp[2] + t_gather;
+                    stamp[4] = stamp[3] + t_base;
+                }
             } else {
+                disc_split_.run(this_thread(), [&](std::size_t b, std::size_t e) { gather_range(gd, disc0 + b, disc0 + e); });
 #pragma omp barrier
 #pragma omp single
                 {
@@ -444,10 +470,10 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
                     for (auto& bd : boundaries) bd->add_forces(*this);
                     stamp[4] = omp_get_wtime();
                 }
+                // The second half kick (sleeping discs have inv_mass = inv_inertia = 0).
+                const auto [b, e] = thread_range(nawake, 8);
+                if (b < e) kick_range(kk, disc0 + b, disc0 + e);
             }
-            // The second half kick over the same discs as this thread's
-            // gather (sleeping discs have inv_mass = inv_inertia = 0).
-            if (b < e) kick_range(kk, disc0 + b, disc0 + e);
 #pragma omp barrier
 #pragma omp master
             {

@@ -27,6 +27,7 @@
 #include <memory>
 #include <vector>
 
+#include "orodem/core/stealing_split.hpp"
 #include "orodem/engine/boundary.hpp"
 #include "orodem/engine/pair_kernel.hpp"
 #include "orodem/neighbor/pair_builder.hpp"
@@ -248,6 +249,8 @@ private:
     void refresh_dashpots();
     std::vector<std::vector<std::uint32_t>> wall_discs_;  // per wall: slots with a candidate contact
     void index_wall_discs();  // wall_discs_ from wall_contacts (after a rebuild or a restore)
+    // Phases A and B's chunks in the one-region steps (core/stealing_split.hpp).
+    StealingSplit pair_split_, disc_split_;
     double kicked_at_ = 0.0;          // omp_get_wtime() when the drift ended (phase timers)
     double pairs_done_at_ = 0.0;      // omp_get_wtime() when phase A ended (phase timers)
 };

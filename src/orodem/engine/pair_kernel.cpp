@@ -342,7 +342,7 @@ template <class O>
         b.xi_x = O::xs_of(a, c);
         b.xi_y = O::ys_of(a, c);
         b.gamma_n = simd::load<V>(d.gamma_n + K[0]);
-        b.gamma_s = simd::load<V>(d.gamma_s + K[0]);
+        b.gamma_s = d.gamma_s ? simd::load<V>(d.gamma_s + K[0]) : V{};
         b.ri = simd::load<V>(d.r_i + K[0]);
         b.rj = simd::load<V>(d.r_j + K[0]);
     } else {
@@ -350,7 +350,7 @@ template <class O>
         for (std::size_t l = 0; l < n; ++l) KO[l] = K[l] * sizeof(double);
         O::gather_vec2(d.xi, KO, b.xi_x, b.xi_y);
         b.gamma_n = O::lanes([&](std::size_t l) { return d.gamma_n[K[l]]; });
-        b.gamma_s = O::lanes([&](std::size_t l) { return d.gamma_s[K[l]]; });
+        b.gamma_s = d.gamma_s ? O::lanes([&](std::size_t l) { return d.gamma_s[K[l]]; }) : V{};
         b.ri = O::lanes([&](std::size_t l) { return d.r_i[K[l]]; });
         b.rj = O::lanes([&](std::size_t l) { return d.r_j[K[l]]; });
     }
@@ -873,7 +873,7 @@ void pair_dashpots(const LawParams& law, const double* mass, const double* inv_m
         double gs = law.damp_mass_s * m_eff;
         if (law.damp_sqrt_s != 0.0) gs += law.damp_sqrt_s * std::sqrt(m_eff);
         gamma_n[k] = gn;
-        gamma_s[k] = gs;
+        if (gamma_s) gamma_s[k] = gs;
     }
 }
 

@@ -28,6 +28,7 @@
 // gives the same results.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -51,7 +52,7 @@ struct PairKernelData {
     const std::int8_t* shift;
     const std::uint8_t* bonded;
     const double* gamma_n;  // normal dashpot of the pair [N s/m] (pair_dashpots)
-    const double* gamma_s;  // tangential dashpot of the pair [N s/m]
+    const double* gamma_s;  // tangential dashpot of the pair [N s/m]; null: +0 for every pair (zero_gamma_s)
     Vec2* xi;
     Vec2* f;
     double* c;
@@ -72,6 +73,15 @@ struct PairKernelData {
 void pair_dashpots(const LawParams& law, const double* mass, const double* inv_mass, double m_inertia_min,
                    const std::uint32_t* i, const std::uint32_t* j, std::size_t begin, std::size_t end,
                    double* gamma_n, double* gamma_s);
+
+/// True when pair_dashpots would give every pair γ_s = +0 exactly (no
+/// tangential dashpot: damp_mass_s is +0 and damp_sqrt_s is 0, as in the
+/// benchmark pile and every shipped config). The engine then keeps no γ_s
+/// column: PairKernelData::gamma_s is null and pair_dashpots takes null for
+/// it (8 bytes a pair less to read each step).
+inline bool zero_gamma_s(const LawParams& law) {
+    return law.damp_mass_s == 0.0 && !std::signbit(law.damp_mass_s) && law.damp_sqrt_s == 0.0;
+}
 
 /// The radii of pairs [begin, end)'s discs as pair columns: phase A loads
 /// four pairs' R_i and R_j as two vectors instead of eight scalars. They

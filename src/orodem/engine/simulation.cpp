@@ -182,8 +182,12 @@ void Simulation::refresh_dashpots() {
     const ParticleStore& p = particles;
     const ContactStore& cs = contacts;
     const std::size_t npairs = cs.size();
+    const bool gamma_s_zero = zero_gamma_s(params.law);
     pair_gamma_n_.resize(npairs);  // allocates only when the pair list outgrows every earlier one
-    pair_gamma_s_.resize(npairs);
+    if (gamma_s_zero)
+        pair_gamma_s_ = {};  // every γ_s is +0: no column (PairKernelData::gamma_s null)
+    else
+        pair_gamma_s_.resize(npairs);
     pair_r_i_.resize(npairs);
     pair_r_j_.resize(npairs);
 #pragma omp parallel if(static_cast<long long>(npairs) >= kParallelMin)
@@ -191,7 +195,7 @@ void Simulation::refresh_dashpots() {
         const auto [b, e] = thread_range(npairs, 64);
         if (b < e) {
             pair_dashpots(params.law, p.mass.data(), p.inv_mass.data(), params.m_inertia_min, cs.i.data(), cs.j.data(), b, e,
-                          pair_gamma_n_.data(), pair_gamma_s_.data());
+                          pair_gamma_n_.data(), gamma_s_zero ? nullptr : pair_gamma_s_.data());
             pair_radii(p.radius.data(), cs.i.data(), cs.j.data(), b, e, pair_r_i_.data(), pair_r_j_.data());
         }
     }
@@ -202,11 +206,13 @@ void Simulation::refresh_dashpots() {
 PairKernelData Simulation::pair_kernel_data(bool update_history) {
     ParticleStore& p = particles;
     ContactStore& cs = contacts;
-    if (dashpots_stale_ || dashpots_epoch_ != p.inertia_epoch || pair_gamma_n_.size() != cs.size())
+    const bool gamma_s_zero = zero_gamma_s(params.law);
+    if (dashpots_stale_ || dashpots_epoch_ != p.inertia_epoch || pair_gamma_n_.size() != cs.size() ||
+        (!gamma_s_zero && pair_gamma_s_.size() != cs.size()))
         refresh_dashpots();
     return {p.x.data(),      p.v.data(),           p.omega.data(),        pair_r_i_.data(), pair_r_j_.data(), cs.i.data(),
             cs.j.data(),     cs.shift.data(),      cs.bonded.data(),      pair_gamma_n_.data(),
-            pair_gamma_s_.data(), cs.xi.data(),    cs.f.data(),           cs.c.data(),     params.period_x,
+            gamma_s_zero ? nullptr : pair_gamma_s_.data(), cs.xi.data(),    cs.f.data(),           cs.c.data(),     params.period_x,
             params.dt,       params.law,           update_history};
 }
 

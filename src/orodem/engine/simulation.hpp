@@ -18,7 +18,10 @@
 // operations, so the same results). With boundaries a step that needs no
 // rebuild also runs in one parallel region, the boundaries' hooks on one
 // thread between barriers, except the bases' forces, which each thread
-// applies to its own discs (Boundary::ForceHook::by_disc_range). No allocation happens in a step once the
+// applies to its own discs (Boundary::ForceHook::by_disc_range). In these
+// regions phases A and B hand out their pairs and discs in chunks, each
+// thread its static share first, then what is left of the other's
+// (core/stealing_split.hpp). No allocation happens in a step once the
 // stores have reached their size.
 #pragma once
 

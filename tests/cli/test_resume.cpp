@@ -372,6 +372,8 @@ TEST_F(Resume, AnOverlapAboveTheWarningLevelIsReportedOnceOnStderrAndAtEveryOutp
     const std::string err = slurp(p.err);
     EXPECT_NE(err.find("orodem: warning: largest overlap/R = 0.01"), std::string::npos) << err;
     EXPECT_NE(err.find("above run.warn_overlap_ratio = 0.001"), std::string::npos) << err;
+    EXPECT_NE(err.find(") m and "), std::string::npos) << "the warning names the pair and where: " << err;
+    EXPECT_NE(err.find(" above it; the run stops at"), std::string::npos) << err;
     EXPECT_EQ(err.find("orodem: warning: largest overlap"), err.rfind("orodem: warning: largest overlap"))
         << "more than one overlap warning: " << err;
     EXPECT_NE(err.find("(further warnings in log.txt only)"), std::string::npos) << err;

@@ -361,13 +361,16 @@ void WedgeRun::warn_if_plate_too_short(const WedgeMeasures& m) {
 }
 
 void WedgeRun::warn_if_overlapping() {
-    const double worst = sim_.max_overlap_ratio();
-    if (worst <= c_.run.warn_overlap_ratio) return;
+    // Where, and how many pairs: a lone impact (one pair, a disc rolling
+    // down a slope) reads differently from a squeezed layer (many pairs).
+    const OverlapSummary o = overlap_summary(sim_, c_.run.warn_overlap_ratio);
+    if (o.worst <= c_.run.warn_overlap_ratio) return;
     const std::string msg = fmt::format(
-        "largest overlap/R = {:.4f} at step {} (S = {:.3f}) is above run.warn_overlap_ratio = {:g} (the run "
-        "stops at run.max_overlap_ratio = {:g}); consider a smaller wedge.v or numerics.safety, or a larger "
-        "material.k_n",
-        worst, sim_.step_count, S(), c_.run.warn_overlap_ratio, c_.run.max_overlap_ratio);
+        "largest overlap/R = {:.4f} at step {} (S = {:.3f}) between discs {} at ({:.6g}, {:.6g}) m and {} at "
+        "({:.6g}, {:.6g}) m is above run.warn_overlap_ratio = {:g} ({} pair{} above it; the run stops at "
+        "run.max_overlap_ratio = {:g}); consider a smaller wedge.v or numerics.safety, or a larger material.k_n",
+        o.worst, sim_.step_count, S(), o.id_i, o.x_i.x, o.x_i.y, o.id_j, o.x_j.x, o.x_j.y, c_.run.warn_overlap_ratio,
+        o.above, o.above == 1 ? "" : "s", c_.run.max_overlap_ratio);
     log_.line("warning: " + msg);
     if (!overlap_warned_) obs_.warning(msg + " (further warnings in log.txt only)", true);
     overlap_warned_ = true;

@@ -18,6 +18,7 @@
 #include <atomic>
 #include <cstddef>
 #include <memory>
+#include <utility>
 
 namespace orodem {
 
@@ -34,11 +35,19 @@ public:
         }
         nth_ = nth;
         chunk_ = chunk;
-        const std::size_t units = (n + align - 1) / align;
         for (std::size_t t = 0; t < nth; ++t) {
-            shares_[t].next.store(std::min(n, align * (units * t / nth)), std::memory_order_relaxed);
-            shares_[t].end = std::min(n, align * (units * (t + 1) / nth));
+            const auto [b, e] = share(n, nth, t, align);
+            shares_[t].next.store(b, std::memory_order_relaxed);
+            shares_[t].end = e;
         }
+    }
+
+    /// Thread t's static share [begin, end) of [0, n) among nth threads, cut
+    /// at multiples of `align` items; contiguous, in thread order.
+    static std::pair<std::size_t, std::size_t> share(std::size_t n, std::size_t nth, std::size_t t,
+                                                     std::size_t align) {
+        const std::size_t units = (n + align - 1) / align;
+        return {std::min(n, align * (units * t / nth)), std::min(n, align * (units * (t + 1) / nth))};
     }
 
     /// Inside the region, by every thread (tid of a team of any size): f(b, e)

@@ -20,8 +20,9 @@
 // addresses both column widths (opaque), x and v into lanes by in-lane
 // unpacks (gather_vec2_off), ω built in vector registers at once
 // (lanes_now), in eight lanes every disc column loaded straight into its
-// quarter of the vector (Lanes8::quad, Lanes8::gather), the sliding branch skipped when no lane of a block slides
-// (about nine blocks of four in ten) and tested with one instruction
+// quarter of the vector (Lanes8::quad, Lanes8::gather), the sliding branch
+// skipped when no lane of a block slides (about nine blocks of four in
+// ten) and tested with one instruction
 // (any_lane, Lanes8::any), and what changes only with the pairs or the
 // masses as pair columns computed then, not every step: the dashpots (m_eff;
 // pair_dashpots) and the radii (pair_radii).
@@ -405,8 +406,7 @@ template <class O>
             // Sliding: scale F_t onto the limit and ξ so the spring (plus the dashpot) sits on it.
             const V ratio = f_max / O::sqrt(ft2);
             // γ_s / k_s: +0 exactly when there is no tangential dashpot (then no division).
-            const bool no_dashpot =
-                p.damp_mass_s == 0.0 && !std::signbit(p.damp_mass_s) && p.damp_sqrt_s == 0.0 && p.k_s > 0.0;
+            const bool no_dashpot = zero_gamma_s(p) && p.k_s > 0.0;
             const V g_over_k = no_dashpot ? V{} : gamma_s / p.k_s;
             const V dpx = g_over_k * vtx, dpy = g_over_k * vty;
             xi_x = O::select(slide, ratio * (xi_x + dpx) - dpx, xi_x);

@@ -143,14 +143,12 @@ void Simulation::index_wall_discs() {
 
 namespace {
 
-/// [begin, end) of thread `tid` of `nth` over n items, cut at multiples of
+/// [begin, end) of this thread of the region's team over n items, cut at multiples of
 /// `align` items (no two threads write one cache line). Any split gives the
 /// same results; this one is contiguous per thread.
 std::pair<std::size_t, std::size_t> thread_range(std::size_t n, std::size_t align) {
-    const std::size_t nth = static_cast<std::size_t>(omp_get_num_threads());
-    const std::size_t tid = static_cast<std::size_t>(omp_get_thread_num());
-    const std::size_t chunks = (n + align - 1) / align;
-    return {std::min(n, align * (chunks * tid / nth)), std::min(n, align * (chunks * (tid + 1) / nth))};
+    return StealingSplit::share(n, static_cast<std::size_t>(omp_get_num_threads()),
+                                static_cast<std::size_t>(omp_get_thread_num()), align);
 }
 
 /// Phases A and B in a parallel region: chunks of this many pairs and discs

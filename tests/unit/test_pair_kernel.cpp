@@ -159,7 +159,7 @@ TEST(PairKernel, BitIdenticalToThePerPairLoop) {
                                         got.i.data(),  got.j.data(),      got.shift.data(), got.bonded.data(),
                                         gn.data(),     gs_col,            got.xi.data(),    got.f.data(),
                                         got.c.data(),  s.W,               dt,               law,
-                                        update};
+                                        update,        s.p.size()};
                 const std::size_t cuts[] = {0, 5 + seed, 18 + 3 * seed, 101 + seed, n / 2 + 2 * seed, n};
                 for (std::size_t c = 0; c + 1 < std::size(cuts); ++c) eval_pair_range(kd, cuts[c], cuts[c + 1]);
                 EXPECT_TRUE(same_bits(got.f, want.f)) << "seed " << seed;
@@ -196,7 +196,7 @@ TEST(PairKernel, GatherBitIdenticalToThePlainSums) {
                                 s.cs.i.data(),  s.cs.j.data(),      s.cs.shift.data(), s.cs.bonded.data(),
                                 gn.data(),      gs.data(),          s.cs.xi.data(),   s.cs.f.data(),
                                 s.cs.c.data(),  s.W,                dt,               law,
-                                true};
+                                true,           s.p.size()};
         eval_pair_range(kd, 0, m);
         if (std::signbit(g.x))  // every f_x -0.0: a disc with no incoming pair sums to -0.0
             for (Vec2& f : s.cs.f) f.x = -0.0;
@@ -226,10 +226,12 @@ TEST(PairKernel, GatherBitIdenticalToThePlainSums) {
             EXPECT_GT(std::count_if(want_f.begin(), want_f.end(), [](Vec2 f) { return std::signbit(f.x); }), 0);
         }
         const std::vector<std::uint32_t> no_walls(n + 1, 0);
+        std::vector<std::uint32_t> in_slots(4 * n);
+        incoming_slots(s.cs.in_begin.data(), s.cs.in_pair.data(), n, in_slots.data());
         const GatherData gd{s.p.x.data(),      s.p.v.data(),        s.p.omega.data(),    s.p.radius.data(),
                             s.p.mass.data(),   s.p.inv_mass.data(), s.p.inv_inertia.data(), s.p.force.data(),
                             s.p.torque.data(), s.cs.begin.data(),   s.cs.in_begin.data(), s.cs.in_pair.data(),
-                            s.cs.f.data(),     s.cs.c.data(),       s.cs.size(),
+                            in_slots.data(),   s.cs.f.data(),     s.cs.c.data(),       s.cs.size(),
                             no_walls.data(),   nullptr,             nullptr,             nullptr,
                             nullptr,           nullptr,             nullptr,             g,
                             dt,                0.0,                 true,                true};

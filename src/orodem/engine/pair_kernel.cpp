@@ -46,6 +46,11 @@
 #include <type_traits>
 #include <utility>
 
+#include <immintrin.h>
+// GCC 12's AVX-512 intrinsics start from _mm512_undefined_pd(), which its
+// own -Wmaybe-uninitialized flags (GCC bug 105593); the warning is not ours.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
 #include "orodem/core/simd.hpp"
 #include "orodem/neighbor/pair_builder.hpp"
 
@@ -153,6 +158,7 @@ struct Lanes4 {
     using Bits = std::uint32_t;  // one byte a lane (the shift and bond flags)
     using IV = std::int32_t __attribute__((vector_size(4 * sizeof(std::int32_t))));
     static constexpr std::size_t n = 4;
+    static constexpr bool kWindow = false;  // see Lanes8::window_i
     [[gnu::always_inline]] static void owned_c(const double* c, const std::size_t* OO, V (&out)[4]) {
         owned_c4(c, OO, out);
     }
@@ -195,6 +201,44 @@ struct Lanes8 {
     using M = std::uint8_t;  // in the asm, a mask register k1-k7 ("Yk")
     using Bits = std::uint64_t;
     static constexpr std::size_t n = 8;
+    static constexpr bool kWindow = true;
+    using VI = std::int64_t __attribute__((vector_size(8 * sizeof(std::int64_t))));
+    using VU = std::uint32_t __attribute__((vector_size(8 * sizeof(std::uint32_t))));
+    /// Lanes idx of the sixteen doubles lo, hi (vpermi2pd: the index's low four bits).
+    [[gnu::always_inline]] static V pick16(V lo, V hi, VI idx) {
+        V r;
+        asm("vpermi2pd %2, %1, %0" : "=v"(r) : "v"(lo), "v"(hi), "0"(idx));
+        return r;
+    }
+    /// Lanes idx of the eight doubles a (vpermpd: the index's low three bits).
+    [[gnu::always_inline]] static V pick8(V a, VI idx) {
+        V r;
+        asm("vpermpd %1, %2, %0" : "=v"(r) : "v"(a), "v"(idx));
+        return r;
+    }
+    /// Disc i's x, v and ω of the eight pairs k0 .. k0 + 7, when their discs
+    /// i (ascending: the pairs are grouped by owner) lie within eight slots
+    /// of the first, first + 8 <= n: two 64-byte loads of x and of v, one of
+    /// ω, then a permute per vector, instead of eight indexed loads of each.
+    /// Returns false (nothing loaded) otherwise.
+    template <class B>
+    [[gnu::always_inline]] static bool window_i(const Vec2* x, const Vec2* v, const double* omega,
+                                                const std::uint32_t* i, std::size_t n_discs, B& b) {
+        const std::uint32_t first = i[0];
+        if (i[7] - first >= 8 || std::size_t{first} + 8 > n_discs) return false;
+        VU iv;
+        __builtin_memcpy(&iv, i, sizeof iv);
+        const VI rel = __builtin_convertvector(iv - first, VI);
+        const VI ix = rel + rel, iy = ix + 1;
+        const V x_lo = simd::load<V>(x + first), x_hi = simd::load<V>(x + first + 4);
+        b.xix = pick16(x_lo, x_hi, ix);
+        b.xiy = pick16(x_lo, x_hi, iy);
+        const V v_lo = simd::load<V>(v + first), v_hi = simd::load<V>(v + first + 4);
+        b.vix = pick16(v_lo, v_hi, ix);
+        b.viy = pick16(v_lo, v_hi, iy);
+        b.wi = pick8(simd::load<V>(omega + first), rel);
+        return true;
+    }
     // vcmppd's predicates: NEQ_UQ, GE_OS, GT_OS, LT_OS (as C's != >= > <).
     template <int kPredicate>
     [[gnu::always_inline]] static M cmp(V a, V b) {
@@ -315,7 +359,10 @@ template <class O>
     Block<O> b;
     // Disc i's columns, then disc j's: in eight lanes, the sixteen byte
     // offsets live at once would not fit the general registers.
-    {
+    bool have_i = false;
+    if constexpr (O::kWindow)
+        if (contiguous) have_i = O::window_i(d.x, d.v, d.omega, d.i + K[0], d.n_discs, b);
+    if (!have_i) {
         std::size_t I[n];  // the discs' byte offsets into the double columns
         for (std::size_t l = 0; l < n; ++l) I[l] = opaque(std::size_t{d.i[K[l]]} * sizeof(double));
         O::gather_vec2(d.x, I, b.xix, b.xiy);
@@ -358,21 +405,36 @@ template <class O>
     return b;
 }
 
-/// The law for the lanes: eval_contact() and the scalar loop, operation for operation.
+/// A block's law up to the Coulomb test: what the sliding step and the
+/// outputs need (law_to_slide, then slide_step where a lane slides, then
+/// outputs).
 template <class O>
-[[gnu::always_inline]] inline Out<O> compute_block(const PairKernelData& d, const Block<O>& b) {
+struct Law {
     using V = typename O::V;
     using M = typename O::M;
+    M touch, slide;
+    V nx, ny, f_n, ftx, fty, xi_x, xi_y, f_max, vtx, vty, gamma_s;
+};
+
+/// The law for the lanes: eval_contact() and the scalar loop, operation for
+/// operation, up to the Coulomb test.
+template <class O>
+[[gnu::always_inline]] inline Law<O> law_to_slide(const PairKernelData& d, const Block<O>& b) {
+    using V = typename O::V;
+    using M = typename O::M;
+    Law<O> w;
     const M bonded = O::nonzero(b.bonded);
     // d = x_i - (x_j + (shift W, 0)); touching unless r² >= (R_i + R_j)² (bonds always).
     const V dx = b.xix - (b.xjx + b.shift * d.period_x);
     const V dy = b.xiy - (b.xjy + 0.0);
     const V r2 = dx * dx + dy * dy;
     const V rsum = b.ri + b.rj;
-    const M touch = O::or_(bonded, O::not_(O::ge(r2, rsum * rsum)));
+    w.touch = O::or_(bonded, O::not_(O::ge(r2, rsum * rsum)));
     const V r = O::sqrt(r2);
     const V s = 1.0 / r;
     const V nx = s * dx, ny = s * dy;
+    w.nx = nx;
+    w.ny = ny;
     const V delta = rsum - r;
     const V vrx = b.vix - b.vjx, vry = b.viy - b.vjy;
     const V spin = b.ri * b.wi + b.rj * b.wj;
@@ -380,58 +442,76 @@ template <class O>
     // Normal part.
     const LawParams& p = d.law;
     const V v_n = vrx * nx + vry * ny;
-    const V vtx = (vrx - v_n * nx) + spin * ny;
-    const V vty = (vry - v_n * ny) + spin * (-nx);
+    w.vtx = (vrx - v_n * nx) + spin * ny;
+    w.vty = (vry - v_n * ny) + spin * (-nx);
     const V gamma_n = b.gamma_n;  // from the masses, per pair (pair_dashpots)
     V f_n = p.k_n * delta - gamma_n * v_n;
     if (p.clamp_normal) f_n = O::select(O::and_not(bonded, O::lt(f_n, V{})), V{}, f_n);
+    w.f_n = f_n;
 
     // Tangential spring, projected onto the tangent line, with the Coulomb
     // limit for unbonded pairs.
-    V xi_x = b.xi_x, xi_y = b.xi_y;
-    V ftx{}, fty{};
+    w.xi_x = b.xi_x;
+    w.xi_y = b.xi_y;
+    w.ftx = V{};
+    w.fty = V{};
+    w.slide = M{};  // no lane
+    w.gamma_s = b.gamma_s;
     if (p.tangential) {
-        xi_x = xi_x + d.dt * vtx;
-        xi_y = xi_y + d.dt * vty;
+        V xi_x = w.xi_x + d.dt * w.vtx;
+        V xi_y = w.xi_y + d.dt * w.vty;
         const V along = xi_x * nx + xi_y * ny;
-        xi_x = xi_x - along * nx;
-        xi_y = xi_y - along * ny;
-        const V gamma_s = b.gamma_s;
-        ftx = (-p.k_s) * xi_x - gamma_s * vtx;
-        fty = (-p.k_s) * xi_y - gamma_s * vty;
-        const V f_max = p.mu * O::fabs(f_n) + p.cohesion;
-        const V ft2 = ftx * ftx + fty * fty;
-        const M slide = O::and_not(bonded, O::gt(ft2, f_max * f_max));
-        if (O::any(slide)) {  // about one block of four in ten: skip the sqrt and divisions otherwise
-            // Sliding: scale F_t onto the limit and ξ so the spring (plus the dashpot) sits on it.
-            const V ratio = f_max / O::sqrt(ft2);
-            // γ_s / k_s: +0 exactly when there is no tangential dashpot (then no division).
-            const bool no_dashpot = zero_gamma_s(p) && p.k_s > 0.0;
-            const V g_over_k = no_dashpot ? V{} : gamma_s / p.k_s;
-            const V dpx = g_over_k * vtx, dpy = g_over_k * vty;
-            xi_x = O::select(slide, ratio * (xi_x + dpx) - dpx, xi_x);
-            xi_y = O::select(slide, ratio * (xi_y + dpy) - dpy, xi_y);
-            ftx = O::select(slide, ratio * ftx, ftx);
-            fty = O::select(slide, ratio * fty, fty);
-        }
+        w.xi_x = xi_x - along * nx;
+        w.xi_y = xi_y - along * ny;
+        w.ftx = (-p.k_s) * w.xi_x - w.gamma_s * w.vtx;
+        w.fty = (-p.k_s) * w.xi_y - w.gamma_s * w.vty;
+        w.f_max = p.mu * O::fabs(f_n) + p.cohesion;
+        const V ft2 = w.ftx * w.ftx + w.fty * w.fty;
+        w.slide = O::and_not(bonded, O::gt(ft2, w.f_max * w.f_max));
     }
+    return w;
+}
+
+/// Sliding: F_t scaled onto the limit and ξ so the spring (plus the
+/// dashpot) sits on it, in the lanes of w.slide (a select per lane: the
+/// others keep their values).
+template <class O>
+[[gnu::always_inline]] inline void slide_step(const LawParams& p, Law<O>& w) {
+    using V = typename O::V;
+    const V ratio = w.f_max / O::sqrt(w.ftx * w.ftx + w.fty * w.fty);
+    // γ_s / k_s: +0 exactly when there is no tangential dashpot (then no division).
+    const bool no_dashpot = zero_gamma_s(p) && p.k_s > 0.0;
+    const V g_over_k = no_dashpot ? V{} : w.gamma_s / p.k_s;
+    const V dpx = g_over_k * w.vtx, dpy = g_over_k * w.vty;
+    w.xi_x = O::select(w.slide, ratio * (w.xi_x + dpx) - dpx, w.xi_x);
+    w.xi_y = O::select(w.slide, ratio * (w.xi_y + dpy) - dpy, w.xi_y);
+    w.ftx = O::select(w.slide, ratio * w.ftx, w.ftx);
+    w.fty = O::select(w.slide, ratio * w.fty, w.fty);
+}
+
+template <class O>
+[[gnu::always_inline]] inline Out<O> outputs(const Law<O>& w) {
     Out<O> o;
-    o.fx = O::keep(touch, f_n * nx + ftx);
-    o.fy = O::keep(touch, f_n * ny + fty);
-    o.c = O::keep(touch, nx * fty - ny * ftx);
-    o.xi_x = O::keep(touch, xi_x);  // history starts afresh at the next touch
-    o.xi_y = O::keep(touch, xi_y);
+    o.fx = O::keep(w.touch, w.f_n * w.nx + w.ftx);
+    o.fy = O::keep(w.touch, w.f_n * w.ny + w.fty);
+    o.c = O::keep(w.touch, w.nx * w.fty - w.ny * w.ftx);
+    o.xi_x = O::keep(w.touch, w.xi_x);  // history starts afresh at the next touch
+    o.xi_y = O::keep(w.touch, w.xi_y);
     return o;
 }
 
-/// O::n whole pairs at k0: contiguous loads and stores of the pair columns.
+/// The whole law for the lanes, the sliding step taken when a lane slides.
 template <class O>
-[[gnu::always_inline]] inline void eval_block(const PairKernelData& d, std::size_t k0) {
+[[gnu::always_inline]] inline Out<O> compute_block(const PairKernelData& d, const Block<O>& b) {
+    Law<O> w = law_to_slide<O>(d, b);
+    if (d.law.tangential && O::any(w.slide)) slide_step<O>(d.law, w);
+    return outputs<O>(w);
+}
+
+/// Stores a block's outputs at pairs k0 .. k0 + O::n - 1.
+template <class O>
+[[gnu::always_inline]] inline void store_block(const PairKernelData& d, std::size_t k0, const Out<O>& o) {
     constexpr std::size_t n = O::n;
-    const auto K = [k0]<std::size_t... L>(std::index_sequence<L...>) {
-        return std::array<std::size_t, n>{(k0 + L)...};
-    }(std::make_index_sequence<n>{});
-    const Out<O> o = compute_block<O>(d, load_block<O>(d, K.data(), true));
     simd::store(d.f + k0, O::zip_lo(o.fx, o.fy));
     simd::store(d.f + k0 + n / 2, O::zip_hi(o.fx, o.fy));
     simd::store(d.c + k0, o.c);
@@ -439,6 +519,81 @@ template <class O>
         simd::store(d.xi + k0, O::zip_lo(o.xi_x, o.xi_y));
         simd::store(d.xi + k0 + n / 2, O::zip_hi(o.xi_x, o.xi_y));
     }
+}
+
+/// The pair indices k0 .. k0 + O::n - 1.
+template <class O>
+[[gnu::always_inline]] inline std::array<std::size_t, O::n> block_pairs(std::size_t k0) {
+    return [k0]<std::size_t... L>(std::index_sequence<L...>) {
+        return std::array<std::size_t, O::n>{(k0 + L)...};
+    }(std::make_index_sequence<O::n>{});
+}
+
+/// O::n whole pairs at k0: contiguous loads and stores of the pair columns.
+template <class O>
+[[gnu::always_inline]] inline void eval_block(const PairKernelData& d, std::size_t k0) {
+    const auto K = block_pairs<O>(k0);
+    store_block<O>(d, k0, compute_block<O>(d, load_block<O>(d, K.data(), true)));
+}
+
+/// A block whose sliding step is left for later (eval_deferred).
+template <class O>
+struct Deferred {
+    Law<O> w;
+    std::size_t k0;
+};
+
+/// O::n whole pairs at k0, the sliding step deferred: the outputs as if no
+/// lane slid are stored, and the block's law is written to `rec`, which the
+/// caller keeps (advances past) only when a lane slides. No branch waits on
+/// the Coulomb test, which ends the block's longest chain: a block that
+/// slides would otherwise be a mispredicted branch about every fifth block
+/// of eight pairs on the pile, with the next blocks' work thrown away.
+template <class O>
+[[gnu::always_inline]] inline bool eval_block_deferred(const PairKernelData& d, std::size_t k0, bool keep_dashpot,
+                                                       Deferred<O>& rec) {
+    const auto K = block_pairs<O>(k0);
+    const Law<O> w = law_to_slide<O>(d, load_block<O>(d, K.data(), true));
+    store_block<O>(d, k0, outputs<O>(w));
+    rec.k0 = k0;
+    rec.w.touch = w.touch;
+    rec.w.slide = w.slide;
+    rec.w.nx = w.nx;
+    rec.w.ny = w.ny;
+    rec.w.f_n = w.f_n;
+    rec.w.ftx = w.ftx;
+    rec.w.fty = w.fty;
+    rec.w.xi_x = w.xi_x;
+    rec.w.xi_y = w.xi_y;
+    rec.w.f_max = w.f_max;
+    rec.w.vtx = w.vtx;  // (+0 / k_s) v_t is ±0 by v_t's sign: kept even without a dashpot
+    rec.w.vty = w.vty;
+    if (keep_dashpot) rec.w.gamma_s = w.gamma_s;
+    return O::any(w.slide);
+}
+
+/// Whole blocks from k over [k, end): chunks of kChunk blocks, each first
+/// with its sliding steps deferred (eval_block_deferred), then the sliding
+/// step of the blocks where a lane slides and their outputs stored again.
+/// The same operations per pair as eval_block, so the same results.
+template <class O>
+[[gnu::always_inline]] inline std::size_t eval_blocks_deferred(const PairKernelData& d, std::size_t k,
+                                                               std::size_t end) {
+    constexpr std::size_t kChunk = 32;  // blocks; the records stay in L1
+    const bool keep_dashpot = !(zero_gamma_s(d.law) && d.law.k_s > 0.0);
+    Deferred<O> rec[kChunk + 1];  // + 1: the last block's record is written whether kept or not
+    while (k + O::n <= end) {
+        std::size_t kept = 0;
+        for (std::size_t b = 0; b < kChunk && k + O::n <= end; ++b, k += O::n)
+            kept += eval_block_deferred<O>(d, k, keep_dashpot, rec[kept]) ? 1 : 0;
+        for (std::size_t r = 0; r < kept; ++r) {
+            Law<O> w = rec[r].w;
+            if (!keep_dashpot) w.gamma_s = typename O::V{};  // not read: γ_s / k_s is +0
+            slide_step<O>(d.law, w);
+            store_block<O>(d, rec[r].k0, outputs<O>(w));
+        }
+    }
+    return k;
 }
 
 /// The last 1 .. O::n - 1 pairs of a range: lanes past the end repeat the last pair and are not stored.
@@ -672,6 +827,212 @@ template <class O>
     if (d.kick) kick_lanes<O>(d.v + i0, d.omega + i0, d.inv_mass + i0, d.inv_inertia + i0, f_lo, f_hi, t, 0.5 * d.dt);
 }
 
+// ---- Phase B in the AVX-512 version (gather_avx512) ----
+//
+// Four discs a block, the force sums of a block kept as they lie in memory:
+// {f_x, f_y} of disc l in lanes 2l and 2l + 1 of one zmm. A slot of the four
+// discs is then four 16-byte loads straight into place (no transposes into x
+// and y vectors, as gather_lanes needs), a slot past a disc's count is
+// skipped by a masked add or subtraction (the lane keeps its value, as
+// x + -0.0 and x - +0.0 leave it), and the sums store as the force column
+// itself. The owned slots 0-3 of a disc are one 64-byte load of f and one
+// 32-byte load of c, transposed; the incoming slots 0-3 come from the
+// four-slot table (incoming_slots), whose offsets for a slot are four loads
+// from one cache line, with no index arithmetic. The torque, a double a
+// disc, is a ymm. Every disc gets the operations of gather_disc(), in the
+// same order, so the results are the same bit for bit. Against gather_lanes
+// on the pile (Zen 5, 7 alternating rounds): phase B 18% faster at one
+// thread, 10% at two. Eight discs a block (more instructions in flight per
+// block, fewer per disc) measured no faster.
+
+/// The 16-byte values at byte offsets o0 .. o3 of base, as the quarters of one zmm.
+[[gnu::target("arch=x86-64-v4"), gnu::always_inline]] inline __m512d quad_at(const char* base, std::size_t o0,
+                                                                             std::size_t o1, std::size_t o2,
+                                                                             std::size_t o3) {
+    __m512d r;
+    asm("vmovupd %1, %x0\n\t"
+        "vinsertf64x2 $1, %2, %0, %0\n\t"
+        "vinsertf64x2 $2, %3, %0, %0\n\t"
+        "vinsertf64x2 $3, %4, %0, %0"
+        : "=&v"(r)
+        : "m"(*reinterpret_cast<const v2d*>(base + o0)), "m"(*reinterpret_cast<const v2d*>(base + o1)),
+          "m"(*reinterpret_cast<const v2d*>(base + o2)), "m"(*reinterpret_cast<const v2d*>(base + o3)));
+    return r;
+}
+
+/// The four doubles at byte offsets o[0 .. 3] of column a, in lanes 0 .. 3.
+[[gnu::target("arch=x86-64-v4"), gnu::always_inline]] inline __m256d four_at(const double* a, const std::size_t* o) {
+    const char* base = reinterpret_cast<const char*>(a);
+    const auto at = [&](std::size_t l) -> const double& { return *reinterpret_cast<const double*>(base + o[l]); };
+    __m256d r;
+    __m128d u;
+    asm("vmovsd %2, %x0\n\t"
+        "vmovhpd %3, %x0, %x0\n\t"
+        "vmovsd %4, %1\n\t"
+        "vmovhpd %5, %1, %1\n\t"
+        "vinsertf64x2 $1, %1, %0, %0"
+        : "=&v"(r), "=&v"(u)
+        : "m"(at(0)), "m"(at(1)), "m"(at(2)), "m"(at(3)));
+    return r;
+}
+
+/// c of four discs' owned slots 0-3 as four slot vectors: one 32-byte load
+/// a disc (byte offsets o[l] of column c) and a 4 × 4 transpose.
+[[gnu::target("arch=x86-64-v4"), gnu::always_inline]] inline void owned_c_avx(const char* cb, const std::size_t* o,
+                                                                              __m256d (&out)[4]) {
+    const __m256d c0 = _mm256_loadu_pd(reinterpret_cast<const double*>(cb + o[0]));
+    const __m256d c1 = _mm256_loadu_pd(reinterpret_cast<const double*>(cb + o[1]));
+    const __m256d c2 = _mm256_loadu_pd(reinterpret_cast<const double*>(cb + o[2]));
+    const __m256d c3 = _mm256_loadu_pd(reinterpret_cast<const double*>(cb + o[3]));
+    const __m256d lo01 = _mm256_unpacklo_pd(c0, c1), hi01 = _mm256_unpackhi_pd(c0, c1);
+    const __m256d lo23 = _mm256_unpacklo_pd(c2, c3), hi23 = _mm256_unpackhi_pd(c2, c3);
+    out[0] = _mm256_permute2f128_pd(lo01, lo23, 0x20);
+    out[1] = _mm256_permute2f128_pd(hi01, hi23, 0x20);
+    out[2] = _mm256_permute2f128_pd(lo01, lo23, 0x31);
+    out[3] = _mm256_permute2f128_pd(hi01, hi23, 0x31);
+}
+
+/// f of four discs' owned slots 0-3 (the 64 bytes from pair ob[l] of column
+/// f) as four slot vectors, {f_x, f_y} of disc l in lanes 2l, 2l + 1: one
+/// load a disc and a 4 × 4 transpose of 16-byte blocks.
+[[gnu::target("arch=x86-64-v4"), gnu::always_inline]] inline void owned_f4(const char* fb, const std::uint32_t* ob,
+                                                                           __m512d (&out)[4]) {
+    const __m512d r0 = _mm512_loadu_pd(fb + std::size_t{ob[0]} * sizeof(Vec2));
+    const __m512d r1 = _mm512_loadu_pd(fb + std::size_t{ob[1]} * sizeof(Vec2));
+    const __m512d r2 = _mm512_loadu_pd(fb + std::size_t{ob[2]} * sizeof(Vec2));
+    const __m512d r3 = _mm512_loadu_pd(fb + std::size_t{ob[3]} * sizeof(Vec2));
+    const __m512d t0 = _mm512_shuffle_f64x2(r0, r1, 0x44), t1 = _mm512_shuffle_f64x2(r0, r1, 0xee);
+    const __m512d t2 = _mm512_shuffle_f64x2(r2, r3, 0x44), t3 = _mm512_shuffle_f64x2(r2, r3, 0xee);
+    out[0] = _mm512_shuffle_f64x2(t0, t2, 0x88);
+    out[1] = _mm512_shuffle_f64x2(t0, t2, 0xdd);
+    out[2] = _mm512_shuffle_f64x2(t1, t3, 0x88);
+    out[3] = _mm512_shuffle_f64x2(t1, t3, 0xdd);
+}
+
+/// Phase B over discs [begin, end): four discs a block (see above), the rest one by one.
+[[gnu::target("arch=x86-64-v4")]] void gather_avx512(const GatherData& d, std::size_t begin, std::size_t end) {
+    // The columns as locals: the kernel's stores (which may alias anything)
+    // then cannot force reloads of them.
+    const std::uint32_t* const own_begin = d.begin;
+    const std::uint32_t* const in_begin = d.in_begin;
+    const std::uint32_t* const in_slots = d.in_slots;
+    const char* const fb = reinterpret_cast<const char*>(d.f);
+    const char* const cb = reinterpret_cast<const char*>(d.c);
+    const std::size_t npairs = d.npairs;
+    const __m512d gravity = _mm512_setr_pd(d.gravity.x, d.gravity.y, d.gravity.x, d.gravity.y, d.gravity.x,
+                                           d.gravity.y, d.gravity.x, d.gravity.y);
+    const __m256d half = _mm256_set1_pd(0.5 * d.dt);
+    const bool kick = d.kick;
+    // Disc l's count (int32) or double to lanes 2l, 2l + 1.
+    const __m256i dup = _mm256_setr_epi32(0, 0, 1, 1, 2, 2, 3, 3);
+    const __m512i dup_pd = _mm512_setr_epi64(0, 0, 1, 1, 2, 2, 3, 3);
+    __m256i slot[4];  // the slot numbers as int32 lanes, compared with the counts
+    for (int s = 0; s < 4; ++s) {
+        slot[s] = _mm256_set1_epi32(s);
+        asm("" : "+v"(slot[s]));  // held in registers, not rebuilt in every block
+    }
+    std::size_t i0 = begin;
+    for (; i0 + 4 <= end; i0 += 4) {
+        const std::uint32_t* ob = own_begin + i0;
+        if (ob[3] + 4 > npairs) [[unlikely]] {  // slots past a disc's own pairs load a valid pair (then masked)
+            for (std::size_t l = 0; l < 4; ++l) gather_disc(d, i0 + l);
+            continue;
+        }
+        const std::uint32_t* ib = in_begin + i0;
+        const __m128i on = _mm_sub_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(ob + 1)),
+                                         _mm_loadu_si128(reinterpret_cast<const __m128i*>(ob)));
+        const __m128i in = _mm_sub_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(ib + 1)),
+                                         _mm_loadu_si128(reinterpret_cast<const __m128i*>(ib)));
+        const __m256i on2 = _mm256_permutevar8x32_epi32(_mm256_zextsi128_si256(on), dup);
+        const __m256i in2 = _mm256_permutevar8x32_epi32(_mm256_zextsi128_si256(in), dup);
+        const __m256d ri = _mm256_loadu_pd(d.radius + i0);
+        const __m512d m2 = _mm512_permutexvar_pd(dup_pd, _mm512_zextpd256_pd512(_mm256_loadu_pd(d.mass + i0)));
+        __m512d f = _mm512_mul_pd(m2, gravity);  // m g, disc by disc
+        __m256d t = _mm256_setzero_pd();
+        {
+            // Owned slots 0-3: a disc's four f are one 64-byte load and its
+            // four c one 32-byte load; 4 × 4 transposes turn the discs' rows
+            // into the slots' vectors.
+            __m512d g[4];
+            owned_f4(fb, ob, g);
+            std::size_t o[4];
+            for (std::size_t l = 0; l < 4; ++l) o[l] = std::size_t{ob[l]} * sizeof(double);
+            __m256d oc[4];
+            owned_c_avx(cb, o, oc);
+            for (int s = 0; s < 4; ++s) {
+                f = _mm512_mask_add_pd(f, _mm256_cmpgt_epi32_mask(on2, slot[s]), f, g[s]);
+                t = _mm256_mask_sub_pd(t, _mm_cmpgt_epi32_mask(on, _mm256_castsi256_si128(slot[s])), t,
+                                       _mm256_mul_pd(ri, oc[s]));
+            }
+        }
+        // More than four of either (about one disc in a hundred): the further
+        // slots, a lane past its count reading its first (masked).
+        const __m128i four = _mm_set1_epi32(4);
+        const bool more = (_mm_cmpgt_epi32_mask(on, four) | _mm_cmpgt_epi32_mask(in, four)) != 0;
+        if (more) [[unlikely]] {
+            alignas(16) std::int32_t onc[4];
+            _mm_store_si128(reinterpret_cast<__m128i*>(onc), on);
+            const std::int32_t on_max = std::max(std::max(onc[0], onc[1]), std::max(onc[2], onc[3]));
+            for (std::int32_t s = 4; s < on_max; ++s) {
+                std::size_t off[4];
+                for (std::size_t l = 0; l < 4; ++l) off[l] = std::size_t{ob[l] + (s < onc[l] ? s : 0)} * sizeof(double);
+                const __m512d g = quad_at(fb, 2 * off[0], 2 * off[1], 2 * off[2], 2 * off[3]);
+                f = _mm512_mask_add_pd(f, _mm256_cmpgt_epi32_mask(on2, _mm256_set1_epi32(s)), f, g);
+                t = _mm256_mask_sub_pd(t, _mm_cmpgt_epi32_mask(on, _mm_set1_epi32(s)), t,
+                                       _mm256_mul_pd(ri, four_at(d.c, off)));
+            }
+        }
+        const std::uint32_t* q = in_slots + 4 * i0;
+        for (int s = 0; s < 4; ++s) {
+            std::size_t off[4];
+            for (std::size_t l = 0; l < 4; ++l) off[l] = q[4 * l + s];
+            const __m512d g = quad_at(fb, 2 * off[0], 2 * off[1], 2 * off[2], 2 * off[3]);
+            f = _mm512_mask_sub_pd(f, _mm256_cmpgt_epi32_mask(in2, slot[s]), f, g);
+            t = _mm256_mask_sub_pd(t, _mm_cmpgt_epi32_mask(in, _mm256_castsi256_si128(slot[s])), t,
+                                   _mm256_mul_pd(ri, four_at(d.c, off)));
+        }
+        if (more) [[unlikely]] {
+            alignas(16) std::int32_t inc[4];
+            _mm_store_si128(reinterpret_cast<__m128i*>(inc), in);
+            const std::int32_t in_max = std::max(std::max(inc[0], inc[1]), std::max(inc[2], inc[3]));
+            for (std::int32_t s = 4; s < in_max; ++s) {
+                std::size_t off[4];
+                for (std::size_t l = 0; l < 4; ++l)
+                    off[l] = s < inc[l] ? std::size_t{d.in_pair[ib[l] + s]} * sizeof(double) : std::size_t{q[4 * l]};
+                const __m512d g = quad_at(fb, 2 * off[0], 2 * off[1], 2 * off[2], 2 * off[3]);
+                f = _mm512_mask_sub_pd(f, _mm256_cmpgt_epi32_mask(in2, _mm256_set1_epi32(s)), f, g);
+                t = _mm256_mask_sub_pd(t, _mm_cmpgt_epi32_mask(in, _mm_set1_epi32(s)), t,
+                                       _mm256_mul_pd(ri, four_at(d.c, off)));
+            }
+        }
+        if (d.wall_begin[i0] != d.wall_begin[i0 + 4]) [[unlikely]] {  // a wall candidate: one disc at a time
+            alignas(64) double fa[8];
+            alignas(32) double ta[4];
+            _mm512_store_pd(fa, f);
+            _mm256_store_pd(ta, t);
+            for (std::size_t l = 0; l < 4; ++l) {
+                Vec2 fl = {fa[2 * l], fa[2 * l + 1]};
+                wall_contacts(d, i0 + l, fl, ta[l]);
+                fa[2 * l] = fl.x;
+                fa[2 * l + 1] = fl.y;
+            }
+            f = _mm512_load_pd(fa);
+            t = _mm256_load_pd(ta);
+        }
+        _mm512_storeu_pd(reinterpret_cast<double*>(d.force + i0), f);
+        _mm256_storeu_pd(d.torque + i0, t);
+        if (kick) {  // kick_disc's operations: v += (dt/2 / m) F, ω += (dt/2 / I) T
+            double* v = reinterpret_cast<double*>(d.v + i0);
+            const __m512d a2 = _mm512_permutexvar_pd(
+                dup_pd, _mm512_zextpd256_pd512(_mm256_mul_pd(half, _mm256_loadu_pd(d.inv_mass + i0))));
+            _mm512_storeu_pd(v, _mm512_add_pd(_mm512_loadu_pd(v), _mm512_mul_pd(a2, f)));
+            const __m256d b = _mm256_mul_pd(half, _mm256_loadu_pd(d.inv_inertia + i0));
+            _mm256_storeu_pd(d.omega + i0, _mm256_add_pd(_mm256_loadu_pd(d.omega + i0), _mm256_mul_pd(b, t)));
+        }
+    }
+    for (; i0 < end; ++i0) gather_disc(d, i0);
+}
+
 /// Discs [begin, end): O::n at a time (gather_lanes), the rest one by one;
 /// O = void: one by one (the baseline version).
 template <class O>
@@ -690,7 +1051,10 @@ template <class O>
     // cannot force reloads of the column pointers.
     const PairKernelData d = dref;
     std::size_t k = begin;
-    for (; k + O::n <= end; k += O::n) eval_block<O>(d, k);
+    if (d.law.tangential)
+        k = eval_blocks_deferred<O>(d, k, end);
+    else
+        for (; k + O::n <= end; k += O::n) eval_block<O>(d, k);
     if (k < end) eval_tail<O>(d, k, end - k);
 }
 
@@ -755,9 +1119,6 @@ template <class O>
 void gather_sse2(const GatherData& d, std::size_t b, std::size_t e) { gather_body<void>(d, b, e); }
 [[gnu::target("arch=x86-64-v3")]] void gather_avx2(const GatherData& d, std::size_t b, std::size_t e) {
     gather_body<Lanes4<true>>(d, b, e);
-}
-[[gnu::target("arch=x86-64-v4")]] void gather_avx512(const GatherData& d, std::size_t b, std::size_t e) {
-    gather_body<Lanes4<true>>(d, b, e);  // eight lanes: 16% slower (eight discs' offsets spill)
 }
 void pairs_sse2(const PairKernelData& d, std::size_t b, std::size_t e) { pair_body<Lanes4<false>>(d, b, e); }
 [[gnu::target("arch=x86-64-v3")]] void pairs_avx2(const PairKernelData& d, std::size_t b, std::size_t e) {
@@ -874,6 +1235,15 @@ void pair_dashpots(const LawParams& law, const double* mass, const double* inv_m
         if (law.damp_sqrt_s != 0.0) gs += law.damp_sqrt_s * std::sqrt(m_eff);
         gamma_n[k] = gn;
         if (gamma_s) gamma_s[k] = gs;
+    }
+}
+
+void incoming_slots(const std::uint32_t* in_begin, const std::uint32_t* in_pair, std::size_t n,
+                    std::uint32_t* out) {
+    for (std::size_t s = 0; s < n; ++s) {
+        const std::uint32_t b = in_begin[s], count = in_begin[s + 1] - b;
+        for (std::uint32_t q = 0; q < 4; ++q)
+            out[4 * s + q] = count == 0 ? 0u : in_pair[b + (q < count ? q : 0)] * std::uint32_t{sizeof(double)};
     }
 }
 

@@ -60,6 +60,7 @@ struct PairKernelData {
     double dt;        // [s]
     LawParams law;
     bool update_history;
+    std::size_t n_discs;  // slots in x, v, ω (bounds phase A's window loads of disc i)
 };
 
 /// The dashpots of pairs [begin, end) from the discs' masses, as eval_contact
@@ -105,6 +106,14 @@ KernelIsa kernel_isa();
 /// Evaluates pairs [begin, end): f[k], c[k] and (if update_history) ξ[k].
 void eval_pair_range(const PairKernelData& d, std::size_t begin, std::size_t end);
 
+/// The four-slot table of the incoming pairs, for phase B's AVX-512
+/// version: out[4 s + q] (s < n discs, q < 4) is the byte offset
+/// (pair index × 8) of disc s's incoming pair q, or, past its count, of
+/// its first incoming pair (pair 0 if it has none; then masked). It changes
+/// only with the pair list. Pair indices must stay below 2^29.
+void incoming_slots(const std::uint32_t* in_begin, const std::uint32_t* in_pair, std::size_t n,
+                    std::uint32_t* out);
+
 /// Views for the gather (no ownership).
 struct GatherData {
     // particles, by slot
@@ -121,6 +130,7 @@ struct GatherData {
     const std::uint32_t* begin;
     const std::uint32_t* in_begin;
     const std::uint32_t* in_pair;
+    const std::uint32_t* in_slots;  // 4 a disc: its incoming slots 0-3 as byte offsets (incoming_slots)
     const Vec2* f;
     const double* c;
     std::size_t npairs;

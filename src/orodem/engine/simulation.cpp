@@ -103,6 +103,7 @@ void Simulation::restore_internals(Internals&& v) {
     last_rebuild_step_ = v.last_rebuild_step;
     index_wall_discs();
     dashpots_stale_ = true;  // pairs and inverse masses restored: the per-pair dashpots follow
+    in_slots_stale_ = true;
     set_drift_range();       // checkpoints are written between advance() calls: no drift lag
 }
 
@@ -130,6 +131,7 @@ void Simulation::rebuild_pairs() {
     apply_sleep(d.x_lo, d.x_hi);
     index_wall_discs();
     dashpots_stale_ = true;
+    in_slots_stale_ = true;
 }
 
 void Simulation::index_wall_discs() {
@@ -211,16 +213,21 @@ PairKernelData Simulation::pair_kernel_data(bool update_history) {
     return {p.x.data(),      p.v.data(),           p.omega.data(),        pair_r_i_.data(), pair_r_j_.data(), cs.i.data(),
             cs.j.data(),     cs.shift.data(),      cs.bonded.data(),      pair_gamma_n_.data(),
             gamma_s_zero ? nullptr : pair_gamma_s_.data(), cs.xi.data(),    cs.f.data(),           cs.c.data(),     params.period_x,
-            params.dt,       params.law,           update_history};
+            params.dt,       params.law,           update_history,        p.size()};
 }
 
 GatherData Simulation::gather_data(bool update_history, bool kick) {
     ParticleStore& p = particles;
     const ContactStore& cs = contacts;
     WallContactStore& ws = wall_contacts;
+    if (in_slots_stale_ || in_slots_.size() != 4 * p.size()) {
+        in_slots_.resize(4 * p.size());  // allocates only when the discs outnumber every earlier count
+        incoming_slots(cs.in_begin.data(), cs.in_pair.data(), p.size(), in_slots_.data());
+        in_slots_stale_ = false;
+    }
     return {p.x.data(),       p.v.data(),          p.omega.data(),       p.radius.data(),  p.mass.data(),
             p.inv_mass.data(), p.inv_inertia.data(), p.force.data(),     p.torque.data(),  cs.begin.data(),
-            cs.in_begin.data(), cs.in_pair.data(),  cs.f.data(),         cs.c.data(),      cs.size(),
+            cs.in_begin.data(), cs.in_pair.data(),  in_slots_.data(),   cs.f.data(),         cs.c.data(),      cs.size(),
             ws.begin.data(),  ws.wall.data(),      ws.xi.data(),         ws.f.data(),      ws.c.data(),
             walls.data(),     wall_law_.data(),    params.gravity,       params.dt,        params.m_inertia_min,
             update_history,   kick};

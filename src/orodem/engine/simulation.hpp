@@ -250,6 +250,10 @@ private:
     bool dashpots_stale_ = true;       // set by a rebuild or a restore
     std::uint64_t dashpots_epoch_ = 0;
     void refresh_dashpots();
+    // Phase B's four-slot table of the incoming pairs (incoming_slots), valid
+    // for the pair list of the last rebuild; refreshed by gather_data().
+    std::vector<std::uint32_t> in_slots_;
+    bool in_slots_stale_ = true;      // set by a rebuild or a restore
     std::vector<std::vector<std::uint32_t>> wall_discs_;  // per wall: slots with a candidate contact
     void index_wall_discs();  // wall_discs_ from wall_contacts (after a rebuild or a restore)
     // Phases A and B's chunks in the one-region steps (core/stealing_split.hpp).

@@ -20,19 +20,21 @@
 // addresses both column widths (opaque), x and v into lanes by in-lane
 // unpacks (gather_vec2_off), ω built in vector registers at once
 // (lanes_now), in eight lanes every disc column loaded straight into its
-// quarter of the vector (Lanes8::quad, Lanes8::gather), the sliding branch
-// skipped when no lane of a block slides (about nine blocks of four in
-// ten) and tested with one instruction
-// (any_lane, Lanes8::any), and what changes only with the pairs or the
-// masses as pair columns computed then, not every step: the dashpots (m_eff;
-// pair_dashpots) and the radii (pair_radii).
+// quarter of the vector (Lanes8::quad, Lanes8::gather) and disc i's columns
+// through an eight-slot window (Lanes8::window_i), and what changes only
+// with the pairs or the masses as pair columns computed then, not every
+// step: the dashpots (m_eff; pair_dashpots) and the radii (pair_radii). The
+// sliding step is deferred (eval_blocks_deferred): on the pile about three
+// blocks of eight pairs in ten have a sliding lane, and a branch on the
+// Coulomb test, which ends a block's longest chain, mispredicted often
+// enough that the blocks after it were thrown away.
 //
-// Phase B takes four discs a time in the AVX versions (gather_lanes): a
-// disc per lane, so the serial sums of one disc (its force and torque, term
-// by term) stay in order while four run side by side. Eight lanes do not pay
-// there: eight discs' pair offsets do not fit the general registers. The
-// integrator's passes (kick_drift_lanes, kick_lanes) take four discs a time
-// in the AVX2 version and eight in the AVX-512 one.
+// Phase B takes four discs a time in the AVX versions, so the serial sums
+// of one disc (its force and torque, term by term) stay in order while four
+// run side by side: a disc per lane in the AVX2 version (gather_lanes), the
+// four discs' forces as they lie in memory in the AVX-512 one
+// (gather_avx512). The integrator's passes (kick_drift_lanes, kick_lanes)
+// take four discs a time in the AVX2 version and eight in the AVX-512 one.
 #include "orodem/engine/pair_kernel.hpp"
 
 #include <string_view>
@@ -123,7 +125,7 @@ template <class F>
 
 // ---- Phase A: the lane policies ----
 //
-// The law is written once (compute_block) over a policy O of O::n lanes:
+// The law is written once (law_to_slide, slide_step, outputs) over a policy O of O::n lanes:
 // O::V the values, O::M a lane mask, and the few operations whose best form
 // differs with the width. Lanes4 (two 128-bit halves in the baseline
 // version, one ymm register in the AVX ones) masks with vector compares;

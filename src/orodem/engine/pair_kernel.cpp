@@ -187,6 +187,12 @@ struct Lanes4 {
     [[gnu::always_inline]] static void gather_vec2(const Vec2* a, const std::size_t* off, V& xs, V& ys) {
         gather_vec2_off(a, off, xs, ys);
     }
+    /// x and y of the n Vec2 at p.
+    [[gnu::always_inline]] static void xy_of(const Vec2* p, V& xs, V& ys) {
+        const V a = simd::load<V>(p), b = simd::load<V>(p + n / 2);
+        xs = even(a, b);
+        ys = odd(a, b);
+    }
     /// x and y of n Vec2 (a: the first n/2, b: the rest).
     [[gnu::always_inline]] static V xs_of(V a, V b) { return even(a, b); }
     [[gnu::always_inline]] static V ys_of(V a, V b) { return odd(a, b); }
@@ -326,6 +332,21 @@ struct Lanes8 {
         xs = __builtin_shufflevector(lo, hi, 0, 8, 2, 10, 4, 12, 6, 14);
         ys = __builtin_shufflevector(lo, hi, 1, 9, 3, 11, 5, 13, 7, 15);
     }
+    /// x and y of the eight Vec2 at p: a load and two two-source permutes
+    /// whose second source is memory (vpermi2pd overwrites its index, a copy
+    /// of the constant). From vector-extension shuffles GCC 12 emitted
+    /// vpermt2pd, which overwrites a data operand, and sent ξ through the
+    /// stack.
+    [[gnu::always_inline]] static void xy_of(const Vec2* p, V& xs, V& ys) {
+        using VI = std::int64_t __attribute__((vector_size(8 * sizeof(std::int64_t))));
+        VI ix = {0, 2, 4, 6, 8, 10, 12, 14}, iy = {1, 3, 5, 7, 9, 11, 13, 15};
+        const V a = simd::load<V>(p);
+        const auto& hi = *reinterpret_cast<const V*>(p + 4);
+        asm("vpermi2pd %2, %1, %0" : "+v"(ix) : "v"(a), "m"(hi));
+        asm("vpermi2pd %2, %1, %0" : "+v"(iy) : "v"(a), "m"(hi));
+        xs = reinterpret_cast<V>(ix);
+        ys = reinterpret_cast<V>(iy);
+    }
     [[gnu::always_inline]] static V xs_of(V a, V b) {
         return __builtin_shufflevector(a, b, 0, 2, 4, 6, 8, 10, 12, 14);
     }
@@ -388,9 +409,7 @@ template <class O>
     b.shift = shifts == 0 ? V{} : O::lanes([&](std::size_t l) { return static_cast<double>(d.shift[K[l]]); });
     b.bonded = bonds == 0 ? V{} : O::lanes([&](std::size_t l) { return static_cast<double>(d.bonded[K[l]]); });
     if (contiguous) {
-        const V a = simd::load<V>(d.xi + K[0]), c = simd::load<V>(d.xi + K[0] + n / 2);
-        b.xi_x = O::xs_of(a, c);
-        b.xi_y = O::ys_of(a, c);
+        O::xy_of(d.xi + K[0], b.xi_x, b.xi_y);
         b.gamma_n = simd::load<V>(d.gamma_n + K[0]);
         b.gamma_s = d.gamma_s ? simd::load<V>(d.gamma_s + K[0]) : V{};
         b.ri = simd::load<V>(d.r_i + K[0]);

@@ -341,7 +341,8 @@ struct Lanes8 {
         using VI = std::int64_t __attribute__((vector_size(8 * sizeof(std::int64_t))));
         VI ix = {0, 2, 4, 6, 8, 10, 12, 14}, iy = {1, 3, 5, 7, 9, 11, 13, 15};
         const V a = simd::load<V>(p);
-        const auto& hi = *reinterpret_cast<const V*>(p + 4);
+        using Vu = double __attribute__((vector_size(8 * sizeof(double)), aligned(alignof(Vec2))));
+        const auto& hi = *reinterpret_cast<const Vu*>(p + 4);  // a Vec2's alignment, not the vector's
         asm("vpermi2pd %2, %1, %0" : "+v"(ix) : "v"(a), "m"(hi));
         asm("vpermi2pd %2, %1, %0" : "+v"(iy) : "v"(a), "m"(hi));
         xs = reinterpret_cast<V>(ix);

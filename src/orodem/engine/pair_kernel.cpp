@@ -49,9 +49,6 @@
 #include <utility>
 
 #include <immintrin.h>
-// GCC 12's AVX-512 intrinsics start from _mm512_undefined_pd(), which its
-// own -Wmaybe-uninitialized flags (GCC bug 105593); the warning is not ours.
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
 #include "orodem/core/simd.hpp"
 #include "orodem/neighbor/pair_builder.hpp"
@@ -477,6 +474,7 @@ template <class O>
     w.xi_y = b.xi_y;
     w.ftx = V{};
     w.fty = V{};
+    w.f_max = V{};
     w.slide = M{};  // no lane
     w.gamma_s = b.gamma_s;
     if (p.tangential) {
@@ -849,6 +847,12 @@ template <class O>
     if (d.kick) kick_lanes<O>(d.v + i0, d.omega + i0, d.inv_mass + i0, d.inv_inertia + i0, f_lo, f_hi, t, 0.5 * d.dt);
 }
 
+// GCC 12's AVX-512 intrinsics start from _mm512_undefined_pd(), which its
+// own -Wmaybe-uninitialized flags (GCC bug 105593): silenced for the
+// intrinsics' code below only.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
 // ---- Phase B in the AVX-512 version (gather_avx512) ----
 //
 // Four discs a block, the force sums of a block kept as they lie in memory:
@@ -1054,6 +1058,7 @@ template <class O>
     }
     for (; i0 < end; ++i0) gather_disc(d, i0);
 }
+#pragma GCC diagnostic pop
 
 /// Discs [begin, end): O::n at a time (gather_lanes), the rest one by one;
 /// O = void: one by one (the baseline version).

@@ -37,6 +37,7 @@
 // take four discs a time in the AVX2 version and eight in the AVX-512 one.
 #include "orodem/engine/pair_kernel.hpp"
 
+#include <stdexcept>
 #include <string_view>
 
 #include <fmt/format.h>
@@ -1267,6 +1268,10 @@ void pair_dashpots(const LawParams& law, const double* mass, const double* inv_m
 
 void incoming_slots(const std::uint32_t* in_begin, const std::uint32_t* in_pair, std::size_t n,
                     std::uint32_t* out) {
+    // A byte offset k × 8 fits 32 bits while k < 2^29 (a pair list of some
+    // 30 GB, far beyond any run's memory; checked all the same).
+    if (n > 0 && in_begin[n] > (std::uint32_t{1} << 29))
+        throw std::length_error(fmt::format("{} disc pairs: phase B's incoming-slot table holds at most 2^29", in_begin[n]));
     for (std::size_t s = 0; s < n; ++s) {
         const std::uint32_t b = in_begin[s], count = in_begin[s + 1] - b;
         for (std::uint32_t q = 0; q < 4; ++q)

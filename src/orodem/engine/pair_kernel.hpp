@@ -110,7 +110,7 @@ void eval_pair_range(const PairKernelData& d, std::size_t begin, std::size_t end
 /// version: out[4 s + q] (s < n discs, q < 4) is the byte offset
 /// (pair index × 8) of disc s's incoming pair q, or, past its count, of
 /// its first incoming pair (pair 0 if it has none; then masked). It changes
-/// only with the pair list. Pair indices must stay below 2^29.
+/// only with the pair list. More than 2^29 pairs throw std::length_error.
 void incoming_slots(const std::uint32_t* in_begin, const std::uint32_t* in_pair, std::size_t n,
                     std::uint32_t* out);
 

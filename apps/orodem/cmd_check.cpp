@@ -122,13 +122,13 @@ int cmd_check(const CommonArgs& a) {
                    c.wedge.pro_margin, pe.front_h0, c.wedge.s_max, pe.alpha_deg, pe.phi_deg, pe.phi_b_deg,
                    pe.pro_margin_min);
         if (const std::string w = short_plate_warning(c, pe); !w.empty()) fmt::print(stderr, "orodem: warning: {}\n", w);
-        // Rates of wedge runs per awake disc on the 2-core development host of
-        // 4 Dec 2026 (AMD EPYC Zen 5 VM; docs/benchmarks.md "Wall times"): 2
-        // threads from the paper-size exp1 (3,120 s of steps to S = 8, about
-        // 41% of its discs awake), 1 thread from the intermediate exp1 runs
-        // (3.5e7 beside another run, 45% awake). The Intel host of 3 Dec ran
-        // the same code 2.5 times slower: other machines differ as much.
-        constexpr double kRate1 = 3.0e7, kRate2 = 5.0e7;  // awake disc-steps/s, 1 and 2 threads
+        // Rates of wedge runs per awake disc (counted as below) on the 2-core
+        // development host of 7 Dec 2026 (AMD EPYC Zen 5 VM; docs/benchmarks.md
+        // "Wall times"): 2 threads from the paper-size exp1 (677.9 s to S = 8,
+        // 8.2e7) and the intermediate one (206.4 s, 8.1e7), 1 thread from the
+        // intermediate one (306.1 s, 5.5e7). The Intel host of 6 Dec ran wedges
+        // about 2.2 times slower: other machines differ as much.
+        constexpr double kRate1 = 5.5e7, kRate2 = 8.0e7;  // awake disc-steps/s, 1 and 2 threads
         const double awake = c.wedge.sleep ? 0.45 : 1.0;
         const double work = steps * static_cast<double>(n) * 0.8 * awake;  // 0.8: the cut to h0
         fmt::print("steps to S = {:g}       = {:.3g} ({:.3g} {}disc-steps)\n", c.wedge.s_max, steps, work,

@@ -102,15 +102,21 @@ protected:
         const Wall& w = sim.walls[wall_];
         const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
         const std::vector<std::uint32_t>& discs = sim.wall_discs(wall_);
-        const long long cb = static_cast<long long>(c0), ce = static_cast<long long>(c1);
-#pragma omp parallel for schedule(static) if(parallel && ce - cb >= kParallelMin)
-        for (long long ii = cb; ii < ce; ++ii) {
-            const std::size_t c = static_cast<std::size_t>(ii);
+        const auto one = [&](std::size_t c) {
             const std::size_t i = discs[c];
-            if (p.inv_mass[i] == 0.0) continue;  // fixed and sleeping discs are left as they are
+            if (p.inv_mass[i] == 0.0) return;  // fixed and sleeping discs are left as they are
             for (std::uint32_t k = ws.begin[i]; k < ws.begin[i + 1]; ++k)
                 if (ws.wall[k] == wall_) law(c, i, k, ws.f[k].x * -u.y + ws.f[k].y * u.x);
+        };
+        const long long cb = static_cast<long long>(c0), ce = static_cast<long long>(c1);
+        if (!parallel || ce - cb < kParallelMin) {
+            // No parallel construct at all: an inactive one still costs a
+            // team start, paid per disc chunk by add_forces_range.
+            for (std::size_t c = c0; c < c1; ++c) one(c);
+            return;
         }
+#pragma omp parallel for schedule(static)
+        for (long long ii = cb; ii < ce; ++ii) one(static_cast<std::size_t>(ii));
     }
 
     std::size_t wall_;

@@ -124,11 +124,11 @@ int cmd_check(const CommonArgs& a) {
         if (const std::string w = short_plate_warning(c, pe); !w.empty()) fmt::print(stderr, "orodem: warning: {}\n", w);
         // Rates of wedge runs per awake disc (counted as below) on the 2-core
         // development host of 7 Dec 2026 (AMD EPYC Zen 5 VM; docs/benchmarks.md
-        // "Wall times"): 2 threads from the paper-size exp1 (677.9 s to S = 8,
-        // 8.2e7) and the intermediate one (206.4 s, 8.1e7), 1 thread from the
-        // intermediate one (306.1 s, 5.5e7). The Intel host of 6 Dec ran wedges
+        // "Wall times"): 2 threads from the paper-size exp1 (636.3 s to S = 8,
+        // 8.7e7) and the intermediate one (172.1 s, 9.7e7), 1 thread from the
+        // intermediate one (291.3 s, 5.7e7). The Intel host of 6 Dec ran wedges
         // about 2.2 times slower: other machines differ as much.
-        constexpr double kRate1 = 5.5e7, kRate2 = 8.0e7;  // awake disc-steps/s, 1 and 2 threads
+        constexpr double kRate1 = 5.7e7, kRate2 = 9.0e7;  // awake disc-steps/s, 1 and 2 threads
         const double awake = c.wedge.sleep ? 0.45 : 1.0;
         const double work = steps * static_cast<double>(n) * 0.8 * awake;  // 0.8: the cut to h0
         fmt::print("steps to S = {:g}       = {:.3g} ({:.3g} {}disc-steps)\n", c.wedge.s_max, steps, work,

@@ -78,5 +78,26 @@ TEST(StealingSplit, ChunksStayInsideTheStaticSharesOnTwoThreads) {
     }
 }
 
+TEST(StealingSplit, ChunksAreAboutAnEighthOfAShareWithinTheirBoundsAndAligned) {
+    // The pile at two threads: 72,000 pairs / 16 = 4,500, held to 2,048; an
+    // intermediate-size wedge's 15,000 awake pairs: 937 -> 960 (a multiple of 64).
+    EXPECT_EQ(StealingSplit::chunk_for(72000, 2, 64, 512, 2048), 2048u);
+    EXPECT_EQ(StealingSplit::chunk_for(15000, 2, 64, 512, 2048), 960u);
+    EXPECT_EQ(StealingSplit::chunk_for(6600, 2, 8, 256, 1024), 416u);  // 412.5 -> 412 -> 416
+    EXPECT_EQ(StealingSplit::chunk_for(1000, 2, 8, 256, 1024), 256u);  // small ranges: the least
+    EXPECT_EQ(StealingSplit::chunk_for(0, 0, 8, 256, 1024), 256u);     // no threads counted as one
+    for (std::size_t n = 0; n < 100000; n += 977)
+        for (const std::size_t team : {1, 2, 3, 8}) {
+            const std::size_t c = StealingSplit::chunk_for(n, team, 64, 512, 2048);
+            EXPECT_EQ(c % 64, 0u);
+            EXPECT_GE(c, 512u);
+            EXPECT_LE(c, 2048u);
+            if (c > 512 && c < 2048) {
+                const double eighth = static_cast<double>(n) / (8.0 * static_cast<double>(team));
+                EXPECT_NEAR(static_cast<double>(c), eighth, 64.0) << n << " " << team;
+            }
+        }
+}
+
 }  // namespace
 }  // namespace orodem

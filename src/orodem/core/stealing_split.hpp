@@ -50,6 +50,16 @@ public:
         return {std::min(n, align * (units * t / nth)), std::min(n, align * (units * (t + 1) / nth))};
     }
 
+    /// The chunk for n items over `team` threads: about eight chunks in each
+    /// thread's share, within [least, most] (both multiples of align), a
+    /// multiple of align. The thread that finishes its share first then
+    /// waits at the phase's barrier for less than a chunk of the other's.
+    static std::size_t chunk_for(std::size_t n, std::size_t team, std::size_t align, std::size_t least,
+                                 std::size_t most) {
+        const std::size_t c = std::clamp(n / (8 * std::max<std::size_t>(team, 1)), least, most);
+        return (c + align - 1) / align * align;
+    }
+
     /// Inside the region, by every thread (tid of a team of any size): f(b, e)
     /// on chunks [b, e) of its own share, then of the others', until none is
     /// left. Every item of [0, n) is passed exactly once over the team.

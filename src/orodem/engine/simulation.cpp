@@ -160,17 +160,6 @@ std::pair<std::size_t, std::size_t> thread_range(std::size_t n, std::size_t alig
 constexpr std::size_t kPairChunk = 2048, kDiscChunk = 1024;
 constexpr std::size_t kPairChunkMin = 512, kDiscChunkMin = 256;
 
-/// The chunks for n items over `team` threads (StealingSplit::chunk_for,
-/// about eight a thread's share). With the fixed 2,048 pairs and 1,024 discs
-/// an intermediate-size wedge at two threads (about 15,000 awake pairs, 7
-/// chunks) waited 7-11% of phases A and B at their barriers, with these
-/// 4-7% (docs/benchmarks.md, "What was done" 27). The pile keeps the largest.
-std::size_t pair_chunk(std::size_t n, std::size_t team) {
-    return StealingSplit::chunk_for(n, team, 64, kPairChunkMin, kPairChunk);
-}
-std::size_t disc_chunk(std::size_t n, std::size_t team) {
-    return StealingSplit::chunk_for(n, team, 8, kDiscChunkMin, kDiscChunk);
-}
 
 /// The threads of a parallel region over n items with `if(n >= kParallelMin)`.
 std::size_t team_for(std::size_t n) {
@@ -278,6 +267,16 @@ void Simulation::gather_forces(bool all) {
     }
 }
 
+void Simulation::reset_splits(std::size_t npairs, std::size_t ndiscs, std::size_t team) {
+    // Chunks of about an eighth of a thread's share (StealingSplit::chunk_for):
+    // with the fixed 2,048 pairs and 1,024 discs an intermediate-size wedge at
+    // two threads (about 15,000 awake pairs, 7 chunks) waited 7-11% of phases
+    // A and B at their barriers, with these 4-7% (docs/benchmarks.md, "What
+    // was done" 27). The pile keeps the largest. Pairs cut at 64, discs at 8.
+    pair_split_.reset(npairs, team, 64, StealingSplit::chunk_for(npairs, team, 64, kPairChunkMin, kPairChunk));
+    disc_split_.reset(ndiscs, team, 8, StealingSplit::chunk_for(ndiscs, team, 8, kDiscChunkMin, kDiscChunk));
+}
+
 void Simulation::pair_forces_gather_kick() {
     // Phases A and B and the second half kick in one parallel region: one
     // fork and join fewer per step, which matters most when the machine is
@@ -286,8 +285,7 @@ void Simulation::pair_forces_gather_kick() {
     const PairKernelData kd = pair_kernel_data(true);
     const GatherData gd = gather_data(true, true);
     const std::size_t npairs = contacts.size(), n = particles.size();
-    pair_split_.reset(npairs, team_for(n), 64, pair_chunk(npairs, team_for(n)));
-    disc_split_.reset(n, team_for(n), 8, disc_chunk(n, team_for(n)));
+    reset_splits(npairs, n, team_for(n));
     double t_pairs_done = 0.0;
 #pragma omp parallel if(static_cast<long long>(n) >= kParallelMin)
     pairs_then_gather(kd, gd, pair_split_, disc_split_, t_pairs_done);
@@ -385,8 +383,7 @@ bool Simulation::step_in_one_region(double wall_move) {
     const PairKernelData kd = pair_kernel_data(true);
     const GatherData gd = gather_data(true, true);
     const std::size_t npairs = contacts.size(), n = particles.size();
-    pair_split_.reset(npairs, team_for(n), 64, pair_chunk(npairs, team_for(n)));
-    disc_split_.reset(n, team_for(n), 8, disc_chunk(n, team_for(n)));
+    reset_splits(npairs, n, team_for(n));
     double max_d2 = max_disp2_;
     bool rebuild = false;
     double t_kicked = 0.0, t_pairs_done = 0.0;
@@ -441,8 +438,7 @@ bool Simulation::boundary_step_in_one_region(double (&stamp)[6]) {
     bool by_range = true;  // no boundary needs a whole add_forces on one thread
     for (const auto& bd : boundaries) by_range = by_range && bd->force_hook() != Boundary::ForceHook::whole;
     const std::size_t team = static_cast<std::size_t>(omp_get_max_threads());
-    pair_split_.reset(npairs, team, 64, pair_chunk(npairs, team));
-    disc_split_.reset(nawake, team, 8, disc_chunk(nawake, team));
+    reset_splits(npairs, nawake, team);
 #pragma omp parallel
     {
         const long long chunks = kick_chunks(db, de);

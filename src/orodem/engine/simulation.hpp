@@ -258,6 +258,7 @@ private:
     void index_wall_discs();  // wall_discs_ from wall_contacts (after a rebuild or a restore)
     // Phases A and B's chunks in the one-region steps (core/stealing_split.hpp).
     StealingSplit pair_split_, disc_split_;
+    void reset_splits(std::size_t npairs, std::size_t ndiscs, std::size_t team);  // before each such step
     double kicked_at_ = 0.0;          // omp_get_wtime() when the drift ended (phase timers)
     double pairs_done_at_ = 0.0;      // omp_get_wtime() when phase A ended (phase timers)
 };

@@ -160,7 +160,6 @@ std::pair<std::size_t, std::size_t> thread_range(std::size_t n, std::size_t alig
 constexpr std::size_t kPairChunk = 2048, kDiscChunk = 1024;
 constexpr std::size_t kPairChunkMin = 512, kDiscChunkMin = 256;
 
-
 /// The threads of a parallel region over n items with `if(n >= kParallelMin)`.
 std::size_t team_for(std::size_t n) {
     return static_cast<long long>(n) >= kParallelMin ? static_cast<std::size_t>(omp_get_max_threads()) : 1;

@@ -33,6 +33,7 @@
 #include "orodem/core/stealing_split.hpp"
 #include "orodem/engine/boundary.hpp"
 #include "orodem/engine/pair_kernel.hpp"
+#include "orodem/engine/phase_clock.hpp"
 #include "orodem/neighbor/pair_builder.hpp"
 #include "orodem/physics/contact_law.hpp"
 #include "orodem/state/contacts.hpp"
@@ -63,20 +64,6 @@ struct SimParams {
     SleepParams sleep;          // off unless enabled
     double m_inertia_min = 0.0; // inertia floor: a free disc moves with max(m, this) (its weight stays m g;
                                 // wedge.inertia_floor, docs/physics.md); 0 = off [kg]
-};
-
-/// Wall time spent in each phase of step(), accumulated since the start or
-/// the last reset_phase_times() [s]. One clock read per phase boundary.
-struct PhaseTimes {
-    double integrate = 0.0;    // half kicks and drift (incl. the rebuild trigger's max displacement)
-    double rebuild = 0.0;      // neighbour rebuilds (sort, pair lists, history)
-    double pair_forces = 0.0;  // phase A: the law per disc pair
-    double gather = 0.0;       // phase B: per-disc sums and wall contacts (plus the second
-                               // half kick when no boundary can change forces, see step())
-    double boundaries = 0.0;   // wall motion and Boundary hooks
-    std::uint64_t steps = 0;   // steps timed
-    std::uint64_t rebuilds = 0;  // neighbour rebuilds among them
-    double total() const { return integrate + rebuild + pair_forces + gather + boundaries; }
 };
 
 struct EnergyReport {
@@ -140,7 +127,7 @@ public:
     /// valid until the next rebuild: boundaries loop over these, not all discs.
     const std::vector<std::uint32_t>& wall_discs(std::size_t w) const { return wall_discs_[w]; }
     /// Discs in the sleeping zones now (engine/sleep.cpp).
-    std::size_t sleeping_count() const { return particles.size() - (awake_end_ - awake_begin_); }
+    std::size_t sleeping_count() const { return particles.size() - (awake_.disc_end - awake_.disc_begin); }
     /// The sleeping zones' last decision (at the last rebuild with sleeping on;
     /// a diagnostic, not saved in checkpoints): the x extent of the active
     /// discs and the bounds beyond which discs sleep [m]; ±inf where none.
@@ -182,8 +169,26 @@ public:
     void reset_phase_times() { times_ = {}; }
 
 private:
-    // The phases of step(); step() is the only caller in the library.
-    // bench/bench_kernels.cpp times them one by one through KernelBench.
+    // The paths of step() (engine/step.cpp): step() picks one; each runs the
+    // phases below in the order the header comment gives. The clock times
+    // them (PhaseTimes); nothing else differs between the paths' results.
+    void step_without_hooks(PhaseClock& clock);      // no boundaries: walls first, the rest in one region
+    void step_hooks_in_one_region(PhaseClock& clock);  // boundaries, from one_region_min_awake awake discs
+    void step_hooks_by_phase(PhaseClock& clock, bool drifted);  // boundaries, phase by phase
+    bool step_in_one_region(double wall_move, PhaseClock& clock);  // false: a rebuild is due (drift done)
+    // With boundaries in one region: kick_drift, walls, after_drift, and (no
+    // rebuild) A, B, add_forces, kick, after_step, the hooks on one thread
+    // (the bases' add_forces per thread over its own discs when no boundary
+    // needs a whole one: Boundary::ForceHook); false: a rebuild is due
+    // (drift, walls and after_drift done).
+    bool boundary_step_in_one_region(PhaseClock& clock);
+    // Its parts, called by every thread of its region (one thread runs the hooks).
+    bool hooks_after_drift(bool lazy, double max_d2, bool by_range, PhaseClock& clock);  // true: rebuild due
+    void gather_bases_kick(const GatherData& gd, const KickData& kk, std::size_t disc0, PhaseClock& clock);
+    void gather_hooks_kick(const GatherData& gd, const KickData& kk, std::size_t disc0, PhaseClock& clock);
+    void hooks_after_step(bool by_range, PhaseClock& clock);
+
+    // The phases. bench/bench_kernels.cpp times them one by one through KernelBench.
     friend struct KernelBench;
     void kick_drift();       // v += F/m dt/2, ω += T/I dt/2, x += v dt, θ += ω dt; max displacement
     bool drift_range(long long& b, long long& e) const;  // slots this step drifts; true: lazy (advance())
@@ -200,16 +205,7 @@ private:
     template <bool kUpdateHistory, bool kKick>
     void gather_forces(bool all = true);  // phase B; kKick: also the second half kick
     void kick();             // second half kick
-    void pair_forces_gather_kick();  // phases A, B and kick() in one parallel region
-    bool step_in_one_region(double wall_move);  // kick_drift + (no rebuild) A, B, kick; false: rebuild first
-    // With boundaries: kick_drift, walls, after_drift, and (no rebuild) A, B,
-    // add_forces, kick, after_step in one parallel region, the hooks on one
-    // thread (the bases' add_forces per thread over its own discs when no
-    // boundary needs a whole one: Boundary::ForceHook); false: a rebuild is
-    // due (drift, walls and after_drift done).
-    // stamp: omp_get_wtime() at the ends of the drift, the after_drift hooks,
-    // phase A, phase B, add_forces and the kick (phase timers).
-    bool boundary_step_in_one_region(double (&stamp)[6]);
+    void pair_forces_gather_kick(PhaseClock& clock);  // phases A, B and kick() in one parallel region
     double move_walls();     // walls move by dt; returns the largest wall shift since the rebuild [m]
     PairKernelData pair_kernel_data(bool update_history);
     GatherData gather_data(bool update_history, bool kick);
@@ -217,50 +213,52 @@ private:
     template <bool kUpdateHistory>
     void compute_forces();   // phases A and B, no kick
     PairBuilder::Settings builder_settings() const;
+    // Phases A and B's chunks in the one-region steps (core/stealing_split.hpp).
+    void reset_splits(std::size_t npairs, std::size_t ndiscs, std::size_t threads);  // before each such step
 
     PairBuilder builder_;
     std::vector<Vec2> wall_shift_;    // wall displacement since the last rebuild [m]
     std::vector<LawParams> wall_law_; // cached per wall
+    std::vector<std::vector<std::uint32_t>> wall_discs_;  // per wall: slots with a candidate contact
+    void index_wall_discs();  // wall_discs_ from wall_contacts (after a rebuild or a restore)
     double max_disp2_ = 0.0;          // largest |x - x_ref|² since the last rebuild [m²]
     bool force_rebuild_ = false;
     PhaseTimes times_;
-    // Sleeping zones: slots [awake_begin_, awake_end_) are stepped and pairs
-    // [pairs_begin_, pairs_end_) evaluated between rebuilds (all of them at a
-    // rebuild step and when sleeping is off); the step of the last rebuild.
-    std::uint32_t awake_begin_ = 0, awake_end_ = 0;
+    StealingSplit pair_split_, disc_split_;
+
+    /// The slots and pairs a step works on (engine/sleep.cpp). Slots
+    /// [disc_begin, disc_end) are stepped and pairs [pair_begin, pair_end)
+    /// evaluated between rebuilds (all of them at a rebuild step and when
+    /// sleeping is off). Inside advance() only slots [drift_begin,
+    /// drift_end) (the awake discs and every disc of an awake pair) drift
+    /// each step; the others, sleeping or fixed discs at a constant
+    /// velocity, fall drift_lag steps behind and catch up at once, before a
+    /// rebuild and when advance() returns.
+    struct AwakeRanges {
+        std::uint32_t disc_begin = 0, disc_end = 0;
+        std::uint32_t pair_begin = 0, pair_end = 0;
+        std::uint64_t last_rebuild_step = 0;  // the step of the last rebuild
+        std::uint32_t drift_begin = 0, drift_end = 0;
+        std::uint64_t drift_lag = 0;          // steps the discs outside the drift range are behind
+        bool defer_drift = false;             // set by advance() while it steps
+    } awake_;
     SleepDecision sleep_decision_;  // the last one (diagnostic)
-    std::uint32_t pairs_begin_ = 0, pairs_end_ = 0;
-    std::uint64_t last_rebuild_step_ = 0;
-    // Lazy drift (engine/sleep.cpp): inside advance(), only slots
-    // [drift_begin_, drift_end_) (the awake discs and every disc of an awake
-    // pair) drift each step; the others are sleeping or fixed discs moving at
-    // a constant velocity and catch up drift_lag_ steps at once, before a
-    // rebuild and when advance() returns.
-    std::uint32_t drift_begin_ = 0, drift_end_ = 0;
-    std::uint64_t drift_lag_ = 0;     // steps the discs outside the drift range are behind
-    bool defer_drift_ = false;        // set by advance() while it steps
     void set_drift_range();           // from the awake and pair ranges
     void catch_up_drift();            // x += lag dt v, θ += lag dt ω outside the drift range
-    // Per-pair dashpots γ_n, γ_s [N s/m] (pair_dashpots) and radii R_i, R_j
-    // [m] (pair_radii), valid for the pair list of the last rebuild and the
-    // inverse masses of inertia_epoch dashpots_epoch_; refreshed by
-    // pair_kernel_data() when either changed.
-    std::vector<double> pair_gamma_n_, pair_gamma_s_;
-    std::vector<double> pair_r_i_, pair_r_j_;
-    bool dashpots_stale_ = true;       // set by a rebuild or a restore
-    std::uint64_t dashpots_epoch_ = 0;
+
+    /// What changes only with the pair list or the masses, kept per pair (and
+    /// per disc) instead of computed every step; valid for the pair list of
+    /// the last rebuild, refreshed by pair_kernel_data() and gather_data()
+    /// when stale (a rebuild or a restore) or the inverse masses changed.
+    struct PairColumns {
+        std::vector<double> gamma_n, gamma_s;  // per-pair dashpots γ_n, γ_s [N s/m] (pair_dashpots)
+        std::vector<double> r_i, r_j;          // radii R_i, R_j [m] (pair_radii)
+        bool stale = true;
+        std::uint64_t epoch = 0;               // the inertia_epoch of the inverse masses they used
+        std::vector<std::uint32_t> in_slots;   // phase B's four-slot table of incoming pairs (incoming_slots)
+        bool in_slots_stale = true;
+    } columns_;
     void refresh_dashpots();
-    // Phase B's four-slot table of the incoming pairs (incoming_slots), valid
-    // for the pair list of the last rebuild; refreshed by gather_data().
-    std::vector<std::uint32_t> in_slots_;
-    bool in_slots_stale_ = true;      // set by a rebuild or a restore
-    std::vector<std::vector<std::uint32_t>> wall_discs_;  // per wall: slots with a candidate contact
-    void index_wall_discs();  // wall_discs_ from wall_contacts (after a rebuild or a restore)
-    // Phases A and B's chunks in the one-region steps (core/stealing_split.hpp).
-    StealingSplit pair_split_, disc_split_;
-    void reset_splits(std::size_t npairs, std::size_t ndiscs, std::size_t team);  // before each such step
-    double kicked_at_ = 0.0;          // omp_get_wtime() when the drift ended (phase timers)
-    double pairs_done_at_ = 0.0;      // omp_get_wtime() when phase A ended (phase timers)
 };
 
 /// Builds the bond topology (all pairs inside each cluster) from cluster ids.

@@ -16,10 +16,10 @@
 //      (never across x_split);
 //   3. after the rebuild (slots now sorted by x column of cells) each
 //      sleeping zone is a whole number of cell columns, so the awake discs
-//      are one slot range [awake_begin_, awake_end_), and the pairs that can
+//      are one slot range [awake_.disc_begin, awake_.disc_end), and the pairs that can
 //      touch an awake disc are those owned by the awake columns and the one
-//      sleeping column next to each side: one pair range [pairs_begin_,
-//      pairs_end_) (a pair never spans more than two adjacent columns, as
+//      sleeping column next to each side: one pair range [awake_.pair_begin,
+//      awake_.pair_end) (a pair never spans more than two adjacent columns, as
 //      the cell edge is at least the contact cut-off).
 //
 // A sleeping disc gets v = u, ω = 0, inv_mass = inv_inertia = 0 (the fixed
@@ -55,7 +55,7 @@ void Simulation::sleep_bounds(SleepDecision& d) const {
     const SleepParams& sp = params.sleep;
     const ParticleStore& p = particles;
     const std::vector<Vec2>& x_ref = builder_.x_ref();
-    const double elapsed = static_cast<double>(step_count - last_rebuild_step_) * params.dt;
+    const double elapsed = static_cast<double>(step_count - awake_.last_rebuild_step) * params.dt;
     const double inf = std::numeric_limits<double>::infinity();
     if (x_ref.size() != p.size() || elapsed <= 0.0) {
         d = SleepDecision{};  // no motion to judge (a rebuild forced right after another): all awake
@@ -107,12 +107,12 @@ void Simulation::apply_sleep(double x_lo, double x_hi) {
             if (!(p.flags[s] & kFlagFixed)) p.set_free_inertia(s, params.m_inertia_min);
         }
     }
-    awake_begin_ = a;
-    awake_end_ = b;
+    awake_.disc_begin = a;
+    awake_.disc_end = b;
     const std::uint32_t owner_lo = n ? builder_.column_start(std::max(lo - 1, 0)) : 0;
     const std::uint32_t owner_hi = n ? builder_.column_start(std::min(hi + 1, g.nx)) : 0;
-    pairs_begin_ = n ? contacts.begin[owner_lo] : 0;
-    pairs_end_ = n ? contacts.begin[owner_hi] : 0;
+    awake_.pair_begin = n ? contacts.begin[owner_lo] : 0;
+    awake_.pair_end = n ? contacts.begin[owner_hi] : 0;
     set_drift_range();
 }
 
@@ -121,27 +121,27 @@ void Simulation::set_drift_range() {
     // every pair evaluated between rebuilds: what a step reads.
     const auto n = static_cast<std::uint32_t>(particles.size());
     std::uint32_t b = n, e = 0;  // empty
-    if (awake_begin_ < std::min(awake_end_, n)) {
-        b = awake_begin_;
-        e = std::min(awake_end_, n);
+    if (awake_.disc_begin < std::min(awake_.disc_end, n)) {
+        b = awake_.disc_begin;
+        e = std::min(awake_.disc_end, n);
     }
-    const std::size_t pe = std::min<std::size_t>(pairs_end_, contacts.size());
-    for (std::size_t k = pairs_begin_; k < pe; ++k) {
+    const std::size_t pe = std::min<std::size_t>(awake_.pair_end, contacts.size());
+    for (std::size_t k = awake_.pair_begin; k < pe; ++k) {
         const std::uint32_t lo = std::min(contacts.i[k], contacts.j[k]), hi = std::max(contacts.i[k], contacts.j[k]);
         if (hi >= n) continue;  // a guard: the checkpoint reader refuses such pairs before a restore
         b = std::min(b, lo);
         e = std::max(e, hi + 1);
     }
-    drift_begin_ = b < e ? b : 0;
-    drift_end_ = b < e ? e : 0;
+    awake_.drift_begin = b < e ? b : 0;
+    awake_.drift_end = b < e ? e : 0;
 }
 
 void Simulation::catch_up_drift() {
     // The discs outside the drift range have inv_mass = 0 and a constant v
-    // and ω since the last rebuild: drift_lag_ steps of x += v dt in one.
-    if (drift_lag_ == 0) return;
+    // and ω since the last rebuild: awake_.drift_lag steps of x += v dt in one.
+    if (awake_.drift_lag == 0) return;
     ParticleStore& p = particles;
-    const double t = static_cast<double>(drift_lag_) * params.dt;
+    const double t = static_cast<double>(awake_.drift_lag) * params.dt;
     const std::size_t n = p.size();
     auto drift = [&](std::size_t from, std::size_t to) {
         for (std::size_t i = from; i < to; ++i) {
@@ -149,9 +149,9 @@ void Simulation::catch_up_drift() {
             p.theta[i] += t * p.omega[i];
         }
     };
-    drift(0, std::min<std::size_t>(drift_begin_, n));
-    drift(std::min<std::size_t>(drift_end_, n), n);
-    drift_lag_ = 0;
+    drift(0, std::min<std::size_t>(awake_.drift_begin, n));
+    drift(std::min<std::size_t>(awake_.drift_end, n), n);
+    awake_.drift_lag = 0;
 }
 
 }  // namespace orodem

@@ -88,7 +88,7 @@ struct ViewOptions {
 /// 0.15 h0: the layer and a triangular wedge above it holding the material
 /// accreted by s_max (area s_max h0²), of slopes whose cotangents add up to
 /// 6 (e.g. 12° and 30°; the wedges measured so far add up to about 9, e.g.
-/// H/h0 = 1.34 at S = 8 in docs/experiments.md, so they fit with room).
+/// H/h0 = 1.34 at S = 8 in docs/studies/rate-study.md, so they fit with room).
 /// Material above the frame is cut off at its top edge, and the panel says
 /// so in red ("material above the frame is cut off").
 ViewOptions run_view(const ConfigBasics& b, int width_px = 1600);

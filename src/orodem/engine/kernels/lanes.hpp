@@ -47,7 +47,7 @@ template <bool kAvx>
 /// (index × 8) also addresses its Vec2 (× 2 in the address). Made
 /// opaque, one register per index serves both widths; otherwise the compiler
 /// keeps the index and the index × 16 and spills them (phase A about 4%
-/// faster, 12% fewer instructions; docs/benchmarks.md).
+/// faster, 12% fewer instructions; docs/studies/kernel-history.md).
 [[gnu::always_inline]] inline std::size_t opaque(std::size_t v) {
     asm("" : "+r"(v));
     return v;
@@ -95,7 +95,7 @@ template <class F>
 // the baseline version also instantiates). Eight lanes halve the index,
 // column and arithmetic instructions per pair of four, which fit twice the
 // pairs in the core's reorder window (phase A 28% faster on the Zen 5 host,
-// docs/benchmarks.md).
+// docs/studies/kernel-history.md).
 
 /// c of four discs' owned slots 0-3 (four doubles from each byte offset
 /// OO[l] of column c) as four slot vectors of the discs: one load a disc and

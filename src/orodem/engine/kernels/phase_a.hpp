@@ -6,7 +6,7 @@
 // sliding and three law variants; the LAMMPS reference and determinism tests
 // would catch a drift too).
 //
-// Cost model (30,000-disc pile, docs/benchmarks.md "Profile"): phase A is
+// Cost model (30,000-disc pile, docs/studies/kernel-history.md "Profile"): phase A is
 // bound by how many of its instructions the core holds in flight, neither by
 // memory nor by one block's chain alone (two passes per chunk and two
 // interleaved blocks gained nothing); a block's chain (sqrt, then the

@@ -157,13 +157,13 @@ void Simulation::pair_forces_gather_kick(PhaseClock& clock) {
     pairs_then_gather(kd, gd, pair_split_, disc_split_, clock);
 }
 
+// kick_drift(), move_walls(), the after_drift hooks, pair_forces(false),
+// gather_forces(false), the add_forces hooks, kick(), the after_step hooks,
+// as step_hooks_by_phase runs them, in one region. When no boundary needs a
+// whole add_forces (by_range), each thread applies the bases' to its own
+// gathered discs and kicks those with no barrier between (the same
+// operations on each disc, the same tallies).
 bool Simulation::boundary_step_in_one_region(PhaseClock& clock) {
-    // kick_drift(), move_walls(), the after_drift hooks, pair_forces(false),
-    // gather_forces(false), the add_forces hooks, kick(), the after_step
-    // hooks, as step_hooks_by_phase runs them, in one region. When no
-    // boundary needs a whole add_forces (by_range), each thread applies the
-    // bases' to its own gathered discs and kicks those with no barrier
-    // between (the same operations on each disc, the same tallies).
     const KickData kk = kick_data();
     long long db = 0, de = 0;
     const bool lazy = drift_range(db, de);

@@ -47,7 +47,7 @@ Config load_calibration(const CommonArgs& a) {
 std::string num(double v) { return fmt::format("{:.6g}", v); }
 
 /// "discs-mu0.3": a file-name part for one test.
-std::string tag(const std::string& kind, const char* what, double value) {
+std::string tag(PackingKind kind, const char* what, double value) {
     return fmt::format("{}-{}{:g}", kind, what, value);
 }
 
@@ -120,7 +120,7 @@ void report_biaxial(const Config& c, const std::vector<BiaxialResult>& res, cons
 
     // Plots: per kind, the stress ratio and the volumetric strain against ε_a, one colour per μ_i.
     std::vector<PlotPanel> panels;
-    for (const std::string& kind : k.kinds) {
+    for (PackingKind kind : k.kinds) {
         PlotPanel ratio{fmt::format("Stress ratio, {}", kind), "axial strain ε_a",
                         "(σ1 − σ3)/(σ1 + σ3) = sin φ_mob", {}};
         PlotPanel vol{fmt::format("Volumetric strain, {}", kind), "axial strain ε_a",
@@ -148,8 +148,8 @@ void report_biaxial(const Config& c, const std::vector<BiaxialResult>& res, cons
     // Friction angles against μ_i.
     PlotPanel angles{"Friction angles against contact friction", "μ_i", "angle (°)", {}};
     int col = 0;
-    for (const std::string& kind : k.kinds) {
-        PlotCurve peak{{}, {}, kind + " peak", col, false, false}, cs{{}, {}, kind + " critical state", col, true,
+    for (PackingKind kind : k.kinds) {
+        PlotCurve peak{{}, {}, fmt::format("{} peak", kind), col, false, false}, cs{{}, {}, fmt::format("{} critical state", kind), col, true,
                                                                        false};
         for (const BiaxialResult& r : res)
             if (r.kind == kind) {
@@ -244,7 +244,7 @@ void report_basal(const Config& c, const std::vector<BasalResult>& res, const st
     for (double v : k.mu_bp_values) cats.push_back(fmt::format("μ_bp = {:g}", v));
     std::vector<BarSeries> series;
     series.push_back({"input μ_bp", k.mu_bp_values, {}});
-    for (const std::string& kind : k.kinds) {
+    for (PackingKind kind : k.kinds) {
         BarSeries s{fmt::format("measured, {}", kind), {}, {}};
         for (double v : k.mu_bp_values) {
             double m = std::nan(""), e = 0.0;
@@ -259,7 +259,7 @@ void report_basal(const Config& c, const std::vector<BasalResult>& res, const st
               "proside basal friction μ_bp", "horizontal / normal force on the base", dir + "/basal-friction.png");
     // The series: how long the block takes to reach its steady state.
     std::vector<PlotPanel> panels;
-    for (const std::string& kind : k.kinds) {
+    for (PackingKind kind : k.kinds) {
         PlotPanel p{fmt::format("Effective basal friction against time, {}", kind), "time since the belt started (s)",
                     "traction / normal force", {}};
         for (const BasalResult& r : res) {
@@ -304,7 +304,7 @@ void report_basal(const Config& c, const std::vector<BasalResult>& res, const st
     md += material_lines(c);
     md += fmt::format("- μ_i = {:g}; block {:g} m long, {:g} m thick, settled under gravity g = {:g} m/s² and cut\n",
                       c.material.mu, k.block_length, k.block_height, c.numerics.gravity);
-    const bool traction = k.base_law == "traction";
+    const bool traction = k.base_law == BaseLaw::traction;
     md += fmt::format("- base law {}; belt speed v' = {:g} m/s{}; {:g} s of belt motion, measured over "
                       "t ≥ {:g} s, rows every {:g} s; dt = {:.4g} s\n\n",
                       k.base_law, k.belt_speed,
@@ -351,7 +351,7 @@ void report_repose(const Config& c, const std::vector<ReposeResult>& res, const 
     write_file_atomic(dir + "/repose.csv", sum);
 
     std::vector<PlotPanel> panels;
-    for (const std::string& kind : k.kinds) {
+    for (PackingKind kind : k.kinds) {
         PlotPanel p{fmt::format("Heap surfaces, {}", kind), "x (m)", "height above the floor (m)", {}};
         for (const ReposeResult& r : res) {
             if (r.kind != kind) continue;
@@ -441,7 +441,7 @@ int cmd_calibrate(const CommonArgs& a, const std::string& out_arg) {
     std::vector<double> secs;
     if (e == "biaxial") {
         std::vector<BiaxialResult> res;
-        for (const std::string& kind : k.kinds)
+        for (PackingKind kind : k.kinds)
             for (double mu : k.mu_values) {
                 const Timer t;
                 res.push_back(run_biaxial(c, kind, mu, say));
@@ -450,7 +450,7 @@ int cmd_calibrate(const CommonArgs& a, const std::string& out_arg) {
         report_biaxial(c, res, secs, dir, md);
     } else if (e == "basal-friction") {
         std::vector<BasalResult> res;
-        for (const std::string& kind : k.kinds)
+        for (PackingKind kind : k.kinds)
             for (double mu_bp : k.mu_bp_values) {
                 const Timer t;
                 res.push_back(run_basal_friction(c, kind, mu_bp, say));
@@ -459,7 +459,7 @@ int cmd_calibrate(const CommonArgs& a, const std::string& out_arg) {
         report_basal(c, res, secs, dir, md);
     } else {
         std::vector<ReposeResult> res;
-        for (const std::string& kind : k.kinds)
+        for (PackingKind kind : k.kinds)
             for (double mu : k.mu_values) {
                 const Timer t;
                 res.push_back(run_repose(c, kind, mu, say));

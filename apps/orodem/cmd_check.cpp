@@ -38,10 +38,10 @@ int check_calibration(const Config& c) {
     const std::size_t values = e == "basal-friction" ? k.mu_bp_values.size() : k.mu_values.size();
     fmt::print("tests                  = {} ({} packing kinds x {} values)\n", k.kinds.size() * values,
                k.kinds.size(), values);
-    auto discs = [&](const std::string& kind, double length, double h0) {
+    auto discs = [&](PackingKind kind, double length, double h0) {
         return generate_packing(calibration_sample(c, kind, length, h0), c.material.density).size();
     };
-    for (const std::string& kind : k.kinds) {
+    for (PackingKind kind : k.kinds) {
         if (e == "biaxial") {
             const std::size_t n = discs(kind, k.width, std::max(c.packing.r_max,
                                                                 0.82 * k.height / 0.9 - 3.0 * c.packing.r_max));
@@ -60,7 +60,7 @@ int check_calibration(const Config& c) {
         const double d = mean_disc_diameter(c);
         fmt::print("strain rate            = {:.4g} 1/s, inertial number I = {:.3g} (limit {:g})\n", k.strain_rate,
                    k.strain_rate * d * std::sqrt(c.material.density / k.confining_stress), k.max_inertial_number);
-    } else if (e == "basal-friction" && k.base_law == "coulomb") {
+    } else if (e == "basal-friction" && k.base_law == BaseLaw::coulomb) {
         check_base_dashpot(c);
         fmt::print("belt speed v'          = {:g} m/s (Coulomb base)\n", k.belt_speed);
     } else if (e == "basal-friction") {
@@ -98,7 +98,7 @@ int cmd_check(const CommonArgs& a) {
     fmt::print("collision time t_c     = {:.6g} s ({:.1f} steps)\n", t.t_collision, t.t_collision / t.dt);
     if (is_wedge(c)) {
         const double steps = c.wedge.s_max * c.packing.h0 / (c.wedge.v * t.dt);
-        if (c.wedge.base_law == "traction")
+        if (c.wedge.base_law == BaseLaw::traction)
             fmt::print("belt speed v'          = {:g} m/s (eq. 6 traction base; limit {:.4g} m/s, margin {:.1f}x)\n",
                        c.wedge.v, numbers.belt_speed_limit, numbers.belt_speed_limit / c.wedge.v);
         else

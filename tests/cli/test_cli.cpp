@@ -161,7 +161,7 @@ TEST_F(Cli, RunWritesRunDirectoryAndReusesPacking) {
     const std::string resolved = slurp(d / "config.toml");
     const orodem::Config rc = orodem::parse_config(resolved, "config.toml");
     EXPECT_EQ(orodem::to_toml(rc), resolved);
-    EXPECT_EQ(rc.packing.kind, "discs");
+    EXPECT_EQ(rc.packing.kind, orodem::PackingKind::discs);
     EXPECT_EQ(rc.packing.length, 20.0);
     EXPECT_HAS(resolved, "k_n = ");  // a default, written out
 

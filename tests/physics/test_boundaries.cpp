@@ -656,7 +656,7 @@ TEST(WedgeSetup, TinyLayerGeometry) {
     EXPECT_DOUBLE_EQ(w3.retro_base->mu_b(), c3.wedge.mu_br_over_mu_bp * c3.wedge.mu_bp);
     EXPECT_EQ(w3.base->name(), "coulomb-base");
     EXPECT_EQ(w3.fixed_retro, nullptr);
-    c3.wedge.base_law = "traction";
+    c3.wedge.base_law = BaseLaw::traction;
     const WedgeSetup t3 = make_wedge(c3, layer);
     EXPECT_TRUE(t3.sim.walls[kWallRetro].rough);
     EXPECT_DOUBLE_EQ(t3.sim.walls[kWallRetro].mu, c3.wedge.mu_br_over_mu_bp * c3.wedge.mu_bp);

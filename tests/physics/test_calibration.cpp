@@ -102,7 +102,7 @@ TEST(ServoWall, ConvergesToTheExactOverlapOfOneDisc) {
 TEST(Biaxial, ServoHoldsTheConfiningStress) {
     test::SerialOmp serial;
     const Config c = small_biaxial(0.3);
-    const BiaxialResult r = run_biaxial(c, "discs", 0.3, {});
+    const BiaxialResult r = run_biaxial(c, PackingKind::discs, 0.3, {});
     ASSERT_EQ(r.rows.size(), 8u);  // 0.04 / 0.005
     // The proportional-integral servo on the walls' elastic stress: mean
     // error a fraction of a percent, every row within 2%.
@@ -128,7 +128,7 @@ TEST(Biaxial, WallStressEqualsTheLoveWeberStressOfTheContacts) {
     // small. The identity itself holds to round-off.
     test::SerialOmp serial;
     const Config c = small_biaxial(0.3);
-    BiaxialSample s = make_biaxial_sample(c, "discs", 0.3);
+    BiaxialSample s = make_biaxial_sample(c, PackingKind::discs, 0.3);
     compact_biaxial(s, c, {});
     const double W = s.width(), H = s.height();
     const Stress2 lw = love_weber_stress(s.sim, W * H);
@@ -166,8 +166,8 @@ TEST(Biaxial, PeakFrictionAngleGrowsWithContactFriction) {
     // 4%): frictionless discs resist by geometric interlocking only, about
     // 10° at the peak; μ_i = 0.5 about 20° (at seeds 1-4 the gap is 5-11°
     // at the peak and 4-14° in the mean over 2-8%).
-    const BiaxialResult smooth = run_biaxial(small_biaxial(0.0, 0.08), "discs", 0.0, {});
-    const BiaxialResult rough = run_biaxial(small_biaxial(0.5, 0.08), "discs", 0.5, {});
+    const BiaxialResult smooth = run_biaxial(small_biaxial(0.0, 0.08), PackingKind::discs, 0.0, {});
+    const BiaxialResult rough = run_biaxial(small_biaxial(0.5, 0.08), PackingKind::discs, 0.5, {});
     EXPECT_GT(rough.phi_peak_deg, smooth.phi_peak_deg + 4.0);
     EXPECT_GT(rough.phi_cs.mean, smooth.phi_cs.mean + 3.0);
     EXPECT_LT(smooth.phi_peak_deg, 15.0);
@@ -217,8 +217,8 @@ TEST(BasalFriction, SettledBlockNeverExceedsMuBp) {
     Config c = basal_config(3.0);
     c.calibrate.block_length = 10.0;
     c.calibrate.block_height = 5.0;
-    c.calibrate.kinds = {"discs"};
-    const BasalResult res = run_basal_friction(c, "discs", 0.4, {});
+    c.calibrate.kinds = {PackingKind::discs};
+    const BasalResult res = run_basal_friction(c, PackingKind::discs, 0.4, {});
     EXPECT_LE(res.mu_eff.mean, 0.4 + 1e-12);
     EXPECT_GT(res.mu_eff.mean, 0.05);
     EXPECT_NEAR(res.mu_walls.mean, res.mu_eff.mean, 0.03);

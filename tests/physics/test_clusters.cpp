@@ -57,7 +57,7 @@ TEST(Clusters, BondsHoldUnderStrongGravity) {
     c.packing.r_min = 0.5;     // [m]
     c.packing.r_max = 1.0;     // [m]
     c.numerics.gravity = 9.81;
-    c.packing.kind = "clusters";
+    c.packing.kind = PackingKind::clusters;
     c.packing.length = 20.0;   // [m]
     c.packing.h0 = 6.0;        // [m]: ~30 clusters
     c.packing.seed = 1;

@@ -155,7 +155,7 @@ LawParams law_for(double restitution, bool clamp) {
     mat.k_n = 1.0e8;
     mat.k_s_over_k_n = 0.5;
     mat.mu = 0.3;
-    mat.damping_kind = "restitution";
+    mat.damping_kind = DampingKind::restitution;
     mat.damping_normal = restitution;
     mat.damping_tangential = 0.0;
     mat.clamp_normal = clamp;

@@ -60,7 +60,7 @@ LawParams incline_law(double damping_tangential = 0.0) {
     mat.k_n = 1.0e8;
     mat.k_s_over_k_n = 0.5;
     mat.mu = 0.3;  // disc-disc μ: unused (the wall has its own; cluster pairs are bonds)
-    mat.damping_kind = "restitution";
+    mat.damping_kind = DampingKind::restitution;
     mat.damping_normal = 0.5;
     mat.damping_tangential = damping_tangential;
     return make_law(mat);

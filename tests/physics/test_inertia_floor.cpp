@@ -40,7 +40,7 @@ LawParams law_with_restitution(double e, bool clamp) {
     mat.density = kRho;
     mat.k_n = 1.0e8;
     mat.k_s_over_k_n = 1.0 / 3.0;
-    mat.damping_kind = "restitution";
+    mat.damping_kind = DampingKind::restitution;
     mat.damping_normal = e;
     mat.clamp_normal = clamp;
     return make_law(mat);

@@ -43,7 +43,7 @@ TEST(SectionForce, EqualsTheMomentumBalanceOfTheLeftPart) {
     c.material.k_n = 1.0e8;       // [N/m]
     c.material.k_s_over_k_n = 1.0 / 3.0;
     c.material.mu = 0.3;
-    c.packing.kind = "clusters";
+    c.packing.kind = PackingKind::clusters;
     c.packing.r_min = 0.5;    // [m]
     c.packing.r_max = 1.0;    // [m]
     c.packing.length = 20.0;  // [m]

@@ -23,8 +23,8 @@ using namespace orodem;
 
 namespace {
 
-void check_floor_carries_weight(const std::string& kind, std::uint64_t seed) {
-    SCOPED_TRACE(kind);
+void check_floor_carries_weight(PackingKind kind, std::uint64_t seed) {
+    SCOPED_TRACE(name_of(kind));
     Config c;
     c.material.density = 2500.0;  // [kg/m³]
     c.material.k_n = 1.0e8;       // [N/m]
@@ -91,7 +91,7 @@ void check_floor_carries_weight(const std::string& kind, std::uint64_t seed) {
     std::printf("[ column ] %s: N = %zu; floor force / weight: %.5f when settled (step %llu, "
                 "E_kin/(M g h0) = %.1e), %.6f at %.1e (step %llu), mean over %.2f s %.6f "
                 "(momentum bound %.1e); side walls y %.1e %.1e N; mean x imbalance %.1e\n",
-                kind.c_str(), p.size(), floor_ratio_1, static_cast<unsigned long long>(s1.step), s1.ke_ratio,
+                name_of(kind), p.size(), floor_ratio_1, static_cast<unsigned long long>(s1.step), s1.ke_ratio,
                 floor_ratio_2, s2.ke_ratio, static_cast<unsigned long long>(s2.step), T, mean_ratio, bound,
                 left.y, right.y, mean_x_ratio);
 
@@ -111,6 +111,6 @@ void check_floor_carries_weight(const std::string& kind, std::uint64_t seed) {
 
 }  // namespace
 
-TEST(SettledColumn, FloorCarriesTheWeightDiscs) { check_floor_carries_weight("discs", 3); }
+TEST(SettledColumn, FloorCarriesTheWeightDiscs) { check_floor_carries_weight(PackingKind::discs, 3); }
 
-TEST(SettledColumn, FloorCarriesTheWeightClusters) { check_floor_carries_weight("clusters", 3); }
+TEST(SettledColumn, FloorCarriesTheWeightClusters) { check_floor_carries_weight(PackingKind::clusters, 3); }

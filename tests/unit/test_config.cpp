@@ -357,7 +357,7 @@ TEST(Config, OverridesReplaceAndAddValues) {
                                   {{"material.mu", "0.5"}, {"packing.kind", "\"discs\""}, {"numerics.gravity", "0"},
                                    {"run.seed", "17"}});
     EXPECT_EQ(c.material.mu, 0.5);
-    EXPECT_EQ(c.packing.kind, "discs");
+    EXPECT_EQ(c.packing.kind, PackingKind::discs);
     EXPECT_EQ(c.numerics.gravity, 0.0);
     EXPECT_EQ(c.run.seed, 17u);
     EXPECT_EQ(c.packing.seed, 17u);  // the derived default follows the override
@@ -402,7 +402,7 @@ TEST(Config, DefaultsResolve) {
     EXPECT_EQ(c.resolved["numerics"]["skin"].value<double>(), 0.4 * c.packing.r_min);
     EXPECT_EQ(c.resolved["numerics"]["dt"].value<double>(), 0.0);
     EXPECT_EQ(c.resolved["material"]["k_n"].value<double>(), d.material.k_n);
-    EXPECT_EQ(c.resolved["material"]["damping_kind"].value<std::string>(), d.material.damping_kind);
+    EXPECT_EQ(c.resolved["material"]["damping_kind"].value<std::string>(), name_of(d.material.damping_kind));
     EXPECT_EQ(c.resolved["packing"]["settle_max_steps"].value<std::int64_t>(), d.packing.settle_max_steps);
     EXPECT_EQ(c.resolved["run"]["threads"].value<std::int64_t>(), d.run.threads);
 }
@@ -454,7 +454,7 @@ TEST(Config, ResolvedTomlRoundTripsExactly) {
     EXPECT_EQ(b.run.seed, 9223372036854775807ull);
     EXPECT_EQ(b.packing.seed, a.packing.seed);
     EXPECT_EQ(b.packing.cache_dir, "dir with 'quotes' \"and\" \\ back\tslash");
-    EXPECT_EQ(b.packing.kind, "discs");
+    EXPECT_EQ(b.packing.kind, PackingKind::discs);
 }
 
 TEST(Config, ResolvedTomlOfDefaultsRoundTrips) {

@@ -52,7 +52,7 @@ TEST(ConfigCalibrate, DefaultsResolve) {
                                   "calib.toml", {});
     const CalibrateConfig& k = c.calibrate;
     ASSERT_EQ(k.kinds.size(), 1u);
-    EXPECT_EQ(k.kinds[0], "discs");  // packing.kind
+    EXPECT_EQ(k.kinds[0], PackingKind::discs);  // packing.kind
     ASSERT_EQ(k.mu_values.size(), 1u);
     EXPECT_DOUBLE_EQ(k.mu_values[0], 0.4);  // material.mu
     // Automatic strain rate: I = ε̇ d sqrt(ρ/σ_3) = max_inertial_number, d = r_min + r_max.
@@ -80,7 +80,7 @@ TEST(ConfigCalibrate, ListsAreRead) {
     const Config c = parse_config(head("biaxial") +
                                       "[calibrate]\nkinds = [\"discs\", \"clusters\"]\nmu_values = [0, 0.1, 1.0]\n",
                                   "calib.toml", {});
-    EXPECT_EQ(c.calibrate.kinds, (std::vector<std::string>{"discs", "clusters"}));
+    EXPECT_EQ(c.calibrate.kinds, (std::vector<PackingKind>{PackingKind::discs, PackingKind::clusters}));
     EXPECT_EQ(c.calibrate.mu_values, (std::vector<double>{0.0, 0.1, 1.0}));  // integers taken as numbers
 }
 
@@ -98,7 +98,7 @@ TEST(ConfigCalibrate, OverridesReachTheLists) {
     const Config c = parse_config(head("repose"), "calib.toml",
                                   {{"calibrate.mu_values", "[0.2, 0.7]"}, {"calibrate.kinds", "[\"clusters\"]"}});
     EXPECT_EQ(c.calibrate.mu_values, (std::vector<double>{0.2, 0.7}));
-    EXPECT_EQ(c.calibrate.kinds, (std::vector<std::string>{"clusters"}));
+    EXPECT_EQ(c.calibrate.kinds, (std::vector<PackingKind>{PackingKind::clusters}));
 }
 
 TEST(ConfigCalibrate, CalibrateTableOutsideACalibrationIsRefused) {

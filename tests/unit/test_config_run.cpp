@@ -162,8 +162,8 @@ TEST(ConfigRun, DragGainKeepsTheSumOfGainsBelowTwo) {
 // "traction"; a run directory's config.toml written before the key existed
 // reads as "traction" (the law that run used) and hashes as it did then.
 TEST(ConfigRun, BaseLawDefaultsToCoulombAndTheTractionKeysNeedTraction) {
-    EXPECT_EQ(parse_config(kWedge, "run.toml", {}).wedge.base_law, "coulomb");
-    EXPECT_EQ(parse_config(kWedge + "[wedge]\nbase_law = \"traction\"\n", "run.toml", {}).wedge.base_law, "traction");
+    EXPECT_EQ(parse_config(kWedge, "run.toml", {}).wedge.base_law, BaseLaw::coulomb);
+    EXPECT_EQ(parse_config(kWedge + "[wedge]\nbase_law = \"traction\"\n", "run.toml", {}).wedge.base_law, BaseLaw::traction);
     for (const char* key : {"traction_gain = 1.0", "drag_gain = 0.1"}) {
         const std::string msg = refusal_of("[wedge]\n" + std::string(key) + "\n");
         EXPECT_NE(msg.find("applies to the eq. 5 traction only"), std::string::npos) << msg;
@@ -183,7 +183,7 @@ TEST(ConfigRun, AResolvedConfigWithoutBaseLawIsAnOlderRunOnTheTractionBase) {
     ASSERT_NE(at, std::string::npos) << old_text;
     old_text.erase(at, std::string("base_law = 'traction'\n").size());
     const Config old = parse_config(old_text, "runs/x/config.toml", {});
-    EXPECT_EQ(old.wedge.base_law, "traction");
+    EXPECT_EQ(old.wedge.base_law, BaseLaw::traction);
     EXPECT_TRUE(old.legacy_base_law);
     // That orodem hashed the text without the keys at its defaults (the
     // traction law's gains, and no base_law key): for this all-defaults exp1,
@@ -229,10 +229,10 @@ TEST(ModelSize, TheDiscEstimateMatchesGenerationAndAbsurdSizesAreRefusedAtOnce) 
 // The plate estimate's inputs: the calibrated bulk friction (docs/validation.md
 // biaxial table) interpolated in mu_i, and the critical taper on it.
 TEST(PlateEstimate, BulkFrictionFromTheCalibrationTableAndTheFrontFromTheTaper) {
-    EXPECT_DOUBLE_EQ(bulk_friction_deg("clusters", 0.3), 24.4);
-    EXPECT_DOUBLE_EQ(bulk_friction_deg("discs", 0.2), 0.5 * (12.0 + 15.6));
-    EXPECT_DOUBLE_EQ(bulk_friction_deg("clusters", 2.0), 28.4);  // beyond the table: its last row
-    EXPECT_DOUBLE_EQ(bulk_friction_deg("hexagonal", 0.0), 7.2);  // the discs' row
+    EXPECT_DOUBLE_EQ(bulk_friction_deg(PackingKind::clusters, 0.3), 24.4);
+    EXPECT_DOUBLE_EQ(bulk_friction_deg(PackingKind::discs, 0.2), 0.5 * (12.0 + 15.6));
+    EXPECT_DOUBLE_EQ(bulk_friction_deg(PackingKind::clusters, 2.0), 28.4);  // beyond the table: its last row
+    EXPECT_DOUBLE_EQ(bulk_friction_deg(PackingKind::hexagonal, 0.0), 7.2);  // the discs' row
     Config c = parse_config(kWedge + "[wedge]\nmu_bp = 0.1\ns_max = 8.0\n", "run.toml", {});
     const PlateEstimate e = plate_estimate(c);
     EXPECT_DOUBLE_EQ(e.phi_deg, 24.4);

@@ -154,13 +154,17 @@ const std::vector<const char*>& experiment_names() {
     return names;
 }
 
+/// calibrate.kinds, in the order its refusal lists them.
+constexpr Named<PackingKind> kCalibrationKinds[] = {
+    {PackingKind::discs, "discs"}, {PackingKind::clusters, "clusters"}, {PackingKind::hexagonal, "hexagonal"}};
+
 /// wedge.base_law or calibrate.base_law. Its default is "coulomb", except in
 /// a run directory's resolved config.toml (resolved_file) that lacks the key:
 /// an older orodem wrote it, whose base was the eq. 5 traction (legacy set).
-std::string read_base_law(Reader& r, const toml::table* in, bool resolved_file, bool& legacy) {
+BaseLaw read_base_law(Reader& r, const toml::table* in, bool resolved_file, bool& legacy) {
     const bool old_run = resolved_file && !(in && in->contains("base_law"));
     if (old_run) legacy = true;
-    return r.choice("base_law", old_run ? "traction" : "coulomb", {"coulomb", "traction"});
+    return r.choice("base_law", old_run ? BaseLaw::traction : BaseLaw::coulomb, kBaseLaws);
 }
 
 /// The eq. 5 traction's own keys are refused under the Coulomb base.
@@ -182,7 +186,7 @@ void read_calibrate(Config& c, Section&& section, const std::string& file, bool 
     CalibrateConfig& k = c.calibrate;
     const std::string& e = c.run.experiment;
     constexpr std::size_t kMaxValues = 20;
-    k.kinds = r.choices("kinds", {c.packing.kind}, {"discs", "clusters", "hexagonal"});
+    k.kinds = r.choices("kinds", {c.packing.kind}, kCalibrationKinds);
     if (e == "biaxial" || e == "repose")
         k.mu_values = r.numbers("mu_values", {c.material.mu}, closed(0.0, 10.0), kMaxValues);
     // A specimen size [m] of at least `times` largest radii, so that it holds a few discs.
@@ -224,7 +228,7 @@ void read_calibrate(Config& c, Section&& section, const std::string& file, bool 
         k.block_height = size("block_height", k.block_height, 4.0);
         k.belt_speed = r.number("belt_speed", k.belt_speed, positive());
         k.base_law = read_base_law(r, in, resolved_file, c.legacy_base_law);
-        if (k.base_law == "traction")
+        if (k.base_law == BaseLaw::traction)
             k.traction_gain = r.number("traction_gain", k.traction_gain, {0.0, 1.5, true, false});
         else
             refuse_traction_keys(r, in, "calibrate", {"traction_gain"});
@@ -305,7 +309,7 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
         if (experiment_of(c).retroside == Retroside::coulomb)
             w.mu_br_over_mu_bp = r.number("mu_br_over_mu_bp", w.mu_br_over_mu_bp, closed(0.0, 1000.0));
         w.base_law = read_base_law(r, in, resolved_file, c.legacy_base_law);
-        if (w.base_law == "traction") {
+        if (w.base_law == BaseLaw::traction) {
             w.traction_gain = r.number("traction_gain", w.traction_gain, {0.0, 1.5, true, false});
             // Uncapped, a disc's velocity change per step is (g_b + g_d) times its
             // slip: the sum must stay below 2 (ConveyorTraction).
@@ -323,7 +327,7 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
         w.sleep_buffer = r.number("sleep_buffer", w.sleep_buffer, {0.0, 100.0, true, false});
         w.sleep_buffer_pro = r.number("sleep_buffer_pro", w.sleep_buffer, {0.0, 100.0, true, false});
         w.inertia_floor = r.number("inertia_floor", w.inertia_floor, {1.0, 10.0, false, false});
-        if (w.inertia_floor != 1.0 && w.base_law == "traction")
+        if (w.inertia_floor != 1.0 && w.base_law == BaseLaw::traction)
             r.refuse("inertia_floor", "applies under the Coulomb base only (the eq. 5 traction's gains and its eq. 6 "
                                       "bound are per unit of a disc's own mass); set wedge.inertia_floor = 1 (on the command "
                                       "line: --set wedge.inertia_floor=1) or wedge.base_law = \"coulomb\"");
@@ -342,11 +346,11 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
         m.k_s_over_k_n = r.number("k_s_over_k_n", m.k_s_over_k_n, closed(0.0, 10.0));
         m.mu = r.number("mu", m.mu, closed(0.0, 10.0));
         m.cohesion = r.number("cohesion", m.cohesion, non_negative());
-        m.damping_kind = r.choice("damping_kind", m.damping_kind, {"restitution", "ratio", "coefficient"});
-        if (m.damping_kind == "restitution") {
+        m.damping_kind = r.choice("damping_kind", m.damping_kind, kDampingKinds);
+        if (m.damping_kind == DampingKind::restitution) {
             m.damping_normal = r.number("damping_normal", m.damping_normal, {0.0, 1.0, true, false});
             m.damping_tangential = r.number("damping_tangential", m.damping_tangential, closed(0.0, 1.0));
-        } else if (m.damping_kind == "ratio") {
+        } else if (m.damping_kind == DampingKind::ratio) {
             m.damping_normal = r.number("damping_normal", m.damping_normal, {0.0, 1.0, false, true});
             m.damping_tangential = r.number("damping_tangential", m.damping_tangential, closed(0.0, 1.0));
         } else {
@@ -360,7 +364,7 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
         auto [in, o] = section("packing");
         Reader r(in, "packing.", file, *o, none);
         PackingConfig& p = c.packing;
-        p.kind = r.choice("kind", p.kind, {"hexagonal", "discs", "clusters"});
+        p.kind = r.choice("kind", p.kind, kPackingKinds);
         p.r_min = r.number("r_min", p.r_min, positive());
         p.r_max = r.number("r_max", p.r_max, positive());
         if (p.r_max < p.r_min)

@@ -13,7 +13,26 @@
 
 #include <toml++/toml.h>
 
+#include "orodem/core/named.hpp"
+
 namespace orodem {
+
+/// The proside (and exp3 retroside) base law (boundary/basal_boundary.hpp).
+enum class BaseLaw { coulomb, traction };
+inline constexpr Named<BaseLaw> kBaseLaws[] = {{BaseLaw::coulomb, "coulomb"}, {BaseLaw::traction, "traction"}};
+constexpr const char* name_of(BaseLaw v) { return name_in(kBaseLaws, v); }
+
+/// How material.damping_normal and damping_tangential are read (setup/scenario.cpp make_law).
+enum class DampingKind { restitution, ratio, coefficient };
+inline constexpr Named<DampingKind> kDampingKinds[] = {
+    {DampingKind::restitution, "restitution"}, {DampingKind::ratio, "ratio"}, {DampingKind::coefficient, "coefficient"}};
+constexpr const char* name_of(DampingKind v) { return name_in(kDampingKinds, v); }
+
+/// The particles of a packing ([33]-[37]): equal discs on a lattice, random discs, random 3-disc clusters.
+enum class PackingKind { hexagonal, discs, clusters };
+inline constexpr Named<PackingKind> kPackingKinds[] = {
+    {PackingKind::hexagonal, "hexagonal"}, {PackingKind::discs, "discs"}, {PackingKind::clusters, "clusters"}};
+constexpr const char* name_of(PackingKind v) { return name_in(kPackingKinds, v); }
 
 struct RunConfig {
     std::string experiment = "settle";  // required: settle | critical-wedge | exp1 | exp2 | exp3
@@ -41,7 +60,7 @@ struct WedgeConfig {
     double output_ds = 0.25;          // ΔS between outputs (series rows) [-]
     double mu_bp = 0.3;               // proside basal friction μ_bp [-]
     double mu_br_over_mu_bp = 2.0;    // exp3: retroside basal friction μ_br / μ_bp [-]
-    std::string base_law = "coulomb"; // proside base: coulomb (spring-slider, static friction μ_bp) | traction
+    BaseLaw base_law = BaseLaw::coulomb;  // proside base: coulomb (spring-slider, static friction μ_bp) | traction
                                       // (eq. 5 capped by μ_bp N); boundary/basal_boundary.hpp
     double traction_gain = 1.0;       // traction only: g_b in the eq. 5 traction γ_b = g_b m_i / dt [-]
     double drag_gain = 0.0;           // g_d in an uncapped drag γ_d = g_d m_i / dt added to it [-]; 0: none
@@ -65,14 +84,14 @@ struct MaterialConfig {
     double k_s_over_k_n = 1.0 / 3.0;  // k_s / k_n [-]; 1/3 keeps the tangential-rotational mode (3 k_s) no stiffer than k_n
     double mu = 0.3;                  // μ_i = tan φ_i, disc-disc Coulomb coefficient [-]
     double cohesion = 0.0;            // C in F_max = μ F_n + C [N]
-    std::string damping_kind = "restitution";  // restitution | ratio | coefficient
+    DampingKind damping_kind = DampingKind::restitution;  // restitution | ratio | coefficient
     double damping_normal = 0.5;      // e (restitution), ζ_n (ratio) or γ̃_n [1/s] (coefficient, F = m_eff γ̃ v)
     double damping_tangential = 0.0;  // ζ_s (restitution, ratio) or γ̃_s [1/s] (coefficient)
     bool clamp_normal = true;         // unbonded contacts never attract (F_n >= 0)
 };
 
 struct PackingConfig {
-    std::string kind = "clusters";    // hexagonal | discs | clusters ([33]-[37])
+    PackingKind kind = PackingKind::clusters;  // hexagonal | discs | clusters ([33]-[37])
     double r_min = 0.5;               // smallest disc radius [m]
     double r_max = 1.0;               // largest disc radius [m] (hexagonal uses r_max)
     double length = 100.0;            // layer length L [m] (settle only; wedge experiments derive it)
@@ -88,7 +107,7 @@ struct PackingConfig {
 /// The calibration experiments (orodem calibrate; docs/validation.md): each
 /// runs once per packing kind and per value of its swept coefficient.
 struct CalibrateConfig {
-    std::vector<std::string> kinds;        // packing kinds to test; default {packing.kind}
+    std::vector<PackingKind> kinds;        // packing kinds to test; default {packing.kind}
     std::vector<double> mu_values;         // biaxial, repose: μ_i values [-]; default {material.mu}
     std::vector<double> mu_bp_values;      // basal-friction: μ_bp values [-]; default {0.3}
     // biaxial: gravity-free sample in a box of four smooth walls
@@ -106,7 +125,7 @@ struct CalibrateConfig {
     double block_length = 20.0;            // block length along the base [m]
     double block_height = 10.0;            // block thickness [m]
     double belt_speed = 0.1;               // belt speed v' [m/s] (eq. 6 checked for the traction law)
-    std::string base_law = "coulomb";      // coulomb | traction, as wedge.base_law
+    BaseLaw base_law = BaseLaw::coulomb;   // coulomb | traction, as wedge.base_law
     double traction_gain = 1.0;            // traction only: g_b in the eq. 5 traction γ_b = g_b m_i / dt [-]
     double belt_travel = 8.0;              // belt displacement of the run [m] (duration = belt_travel / belt_speed)
     double min_duration = 80.0;            // ... but at least this long [s]

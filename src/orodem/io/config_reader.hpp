@@ -17,6 +17,7 @@
 #include <toml++/toml.h>
 
 #include "orodem/core/error.hpp"
+#include "orodem/core/named.hpp"
 
 namespace orodem::config_reader {
 
@@ -145,6 +146,29 @@ public:
         out_.insert_or_assign(key, v);
         return v;
     }
+    /// One of an enum's names (Named table), returned as the enum; the name is what the resolved config holds.
+    template <class E, std::size_t N>
+    E choice(const char* key, E def, const Named<E> (&table)[N], bool required = false) {
+        std::vector<const char*> names;
+        for (const Named<E>& n : table) names.push_back(n.name);
+        const std::string v = choice(key, name_in(table, def), names, required);
+        for (const Named<E>& n : table)
+            if (v == n.name) return n.value;
+        return def;  // not reached: choice() refused any other name
+    }
+    /// A list of 1..N distinct names of an enum's table.
+    template <class E, std::size_t N>
+    std::vector<E> choices(const char* key, const std::vector<E>& def, const Named<E> (&table)[N]) {
+        std::vector<std::string> def_names;
+        for (E d : def) def_names.push_back(name_in(table, d));
+        std::vector<const char*> names;
+        for (const Named<E>& n : table) names.push_back(n.name);
+        std::vector<E> out;
+        for (const std::string& v : choices(key, def_names, names))
+            for (const Named<E>& n : table)
+                if (v == n.name) out.push_back(n.value);
+        return out;
+    }
     /// A list of 1..max_n distinct numbers, each in r (integers are taken as numbers).
     std::vector<double> numbers(const char* key, const std::vector<double>& def, Range r, std::size_t max_n) {
         const toml::node* n = find(key);
@@ -173,7 +197,7 @@ public:
     }
     /// A list of 1..N distinct strings, each one of `allowed`.
     std::vector<std::string> choices(const char* key, const std::vector<std::string>& def,
-                                     std::initializer_list<const char*> allowed) {
+                                     const std::vector<const char*>& allowed) {
         std::string list;
         for (const char* a : allowed) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", a);
         const std::string what = fmt::format("must be a list of distinct values, each one of {}", list);

@@ -31,7 +31,7 @@ std::uint64_t packing_key(const Config& c) {
     Fnv1a h;
     h.add(kVersion);
     const PackingConfig& p = c.packing;
-    h.add_string(p.kind);
+    h.add_string(name_of(p.kind));
     h.add(p.r_min); h.add(p.r_max); h.add(p.length); h.add(p.h0); h.add(p.seed);
     h.add(p.settle_ke_ratio); h.add(p.settle_damping_ratio); h.add(p.wall_mu);
     const MaterialConfig& m = c.material;

@@ -1,7 +1,7 @@
 // How a run reaches the person (or program) that started it. run/ prints
 // nothing and installs no signal handler: the terminal's progress line, the
 // warnings on stderr, the stdout notes and the stop signals come through
-// this interface (apps/orodem/terminal.hpp implements it for the command
+// this interface (TerminalObserver in apps/orodem/cli.cpp implements it for the command
 // line; tests and other drivers may implement it otherwise). The calls are
 // made between steps, never inside one.
 #pragma once

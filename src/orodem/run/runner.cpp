@@ -53,7 +53,7 @@ ParticleStore prepare_layer(const Config& c, const std::string& dir, RunLog& log
     log.line(fmt::format("settling a new packing ({})", why));
     Simulation sim = make_settle_simulation(c);
     sim.initialize();
-    log.line(fmt::format("generated {} discs ({}); settling", sim.particles.size(), c.packing.kind));
+    log.line(fmt::format("generated {} discs ({}); settling", sim.particles.size(), name_of(c.packing.kind)));
     const auto t0 = std::chrono::steady_clock::now();
     const SettleProgress done = settle(sim, c.packing, c.run.output_interval, [&](const SettleProgress& s) {
         if (const int sig = obs.stop_requested()) {

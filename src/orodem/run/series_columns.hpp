@@ -52,6 +52,7 @@ enum class ColumnFormat {
 
 struct SeriesColumn {
     const char* name;
+    const char* meaning;                // with its unit in brackets (docs/reference.md's table is made from it)
     ColumnFormat format;
     double (*value)(const SeriesRow&);  // integers are exact below 2^53
     bool from_snapshot;                 // measurable again from a saved snapshot (orodem measure)

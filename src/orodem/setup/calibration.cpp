@@ -101,7 +101,7 @@ double BiaxialSample::solid_fraction() const {
     return a / (width() * height());
 }
 
-BiaxialSample make_biaxial_sample(const Config& c, const std::string& kind, double mu) {
+BiaxialSample make_biaxial_sample(const Config& c, PackingKind kind, double mu) {
     const CalibrateConfig& k = c.calibrate;
     // The compaction shrinks both sides at the same strain rate, so the loose
     // packing must already have the sample's aspect ratio: a trial packing
@@ -278,9 +278,9 @@ BiaxialResult shear_biaxial(BiaxialSample& s, const Config& c, const Calibration
     return res;
 }
 
-BiaxialResult run_biaxial(const Config& c, const std::string& kind, double mu, const CalibrationLog& log) {
+BiaxialResult run_biaxial(const Config& c, PackingKind kind, double mu, const CalibrationLog& log) {
     BiaxialSample s = make_biaxial_sample(c, kind, mu);
-    say(log, fmt::format("biaxial {} μ_i = {:g}: {} discs, loose box {:.4g} x {:.4g} m", kind, mu,
+    say(log, fmt::format("biaxial {} μ_i = {:g}: {} discs, loose box {:.4g} x {:.4g} m", name_of(kind), mu,
                          s.sim.particles.size(), s.width(), s.height()));
     const CompactionResult comp = compact_biaxial(s, c, log);
     say(log, fmt::format("  compacted in {} steps to {:.4g} x {:.4g} m, solid fraction {:.4f}", comp.steps,
@@ -297,7 +297,7 @@ BiaxialResult run_biaxial(const Config& c, const std::string& kind, double mu, c
 
 // ----------------------------------------------------------- basal friction
 
-ParticleStore settled_block(const Config& c, const std::string& kind, double mu, double length, double height,
+ParticleStore settled_block(const Config& c, PackingKind kind, double mu, double length, double height,
                             const CalibrationLog& log) {
     Config cc = c;
     cc.packing.kind = kind;
@@ -310,7 +310,7 @@ ParticleStore settled_block(const Config& c, const std::string& kind, double mu,
     const std::size_t before = sim.particles.size();
     cut_layer(sim.particles, height);
     say(log, fmt::format("  settled {} discs ({}, {:.4g} x {:.4g} m) in {} steps; {} kept after the cut", before,
-                         kind, length, height, done.step, sim.particles.size()));
+                         name_of(kind), length, height, done.step, sim.particles.size()));
     return std::move(sim.particles);
 }
 
@@ -318,7 +318,7 @@ BasalResult run_basal_block(const Config& c, ParticleStore block, double mu, dou
                             const CalibrationLog& log) {
     const CalibrateConfig& k = c.calibrate;
     const TimestepInfo t = timestep_for(c);
-    const bool traction_law = k.base_law == "traction";
+    const bool traction_law = k.base_law == BaseLaw::traction;
     const double v_limit = lightest_mass(c) * c.numerics.gravity / (c.material.k_n * t.dt);  // eq. 6
     if (traction_law && !(k.belt_speed < v_limit))
         throw ConfigError(fmt::format("{}: key 'calibrate.belt_speed' = {:g}: must satisfy eq. 6, v' < m g / (k_n dt) "
@@ -413,9 +413,9 @@ BasalResult run_basal_block(const Config& c, ParticleStore block, double mu, dou
     return res;
 }
 
-BasalResult run_basal_friction(const Config& c, const std::string& kind, double mu_bp, const CalibrationLog& log) {
+BasalResult run_basal_friction(const Config& c, PackingKind kind, double mu_bp, const CalibrationLog& log) {
     const CalibrateConfig& k = c.calibrate;
-    say(log, fmt::format("basal friction {} μ_i = {:g}, μ_bp = {:g}: block {:g} x {:g} m, belt {:g} m/s", kind,
+    say(log, fmt::format("basal friction {} μ_i = {:g}, μ_bp = {:g}: block {:g} x {:g} m, belt {:g} m/s", name_of(kind),
                          c.material.mu, mu_bp, k.block_length, k.block_height, k.belt_speed));
     ParticleStore block = settled_block(c, kind, c.material.mu, k.block_length, k.block_height, log);
     BasalResult r = run_basal_block(c, std::move(block), c.material.mu, mu_bp, log);
@@ -425,10 +425,10 @@ BasalResult run_basal_friction(const Config& c, const std::string& kind, double 
 
 // ------------------------------------------------------------------- repose
 
-ReposeResult run_repose(const Config& c, const std::string& kind, double mu, const CalibrationLog& log) {
+ReposeResult run_repose(const Config& c, PackingKind kind, double mu, const CalibrationLog& log) {
     const CalibrateConfig& k = c.calibrate;
     const double w = k.column_width, H = k.column_height, rf = c.packing.r_max;
-    say(log, fmt::format("repose {} μ_i = {:g}: column {:g} x {:g} m, walls rise at {:g} m/s", kind, mu, w, H,
+    say(log, fmt::format("repose {} μ_i = {:g}: column {:g} x {:g} m, walls rise at {:g} m/s", name_of(kind), mu, w, H,
                          k.lift_speed));
     ParticleStore p = settled_block(c, kind, mu, w, H, log);
     ReposeResult res;
@@ -512,10 +512,10 @@ void check_calibration_size(const Config& c) {
     const std::string& e = c.run.experiment;
     const double length = e == "biaxial" ? k.width : e == "basal-friction" ? k.block_length : k.column_width;
     const double height = e == "biaxial" ? k.height : e == "basal-friction" ? k.block_height : k.column_height;
-    for (const std::string& kind : k.kinds) calibration_sample(c, kind, length, height);
+    for (PackingKind kind : k.kinds) calibration_sample(c, kind, length, height);
 }
 
-PackingConfig calibration_sample(const Config& c, const std::string& kind, double length, double height) {
+PackingConfig calibration_sample(const Config& c, PackingKind kind, double length, double height) {
     PackingConfig pc = c.packing;
     pc.kind = kind;
     pc.length = length;

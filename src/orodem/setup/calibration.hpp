@@ -82,7 +82,7 @@ struct BiaxialSample {
 
 /// The loose packing of `kind` in its box with μ_i = mu, not yet compacted
 /// (initialised; compaction damping).
-BiaxialSample make_biaxial_sample(const Config& c, const std::string& kind, double mu);
+BiaxialSample make_biaxial_sample(const Config& c, PackingKind kind, double mu);
 
 struct CompactionResult {
     std::uint64_t steps = 0;
@@ -106,7 +106,7 @@ struct BiaxialRow {
 };
 
 struct BiaxialResult {
-    std::string kind;
+    PackingKind kind = PackingKind::clusters;
     double mu = 0;
     std::size_t discs = 0;
     double strain_rate = 0;          // ε̇ [1/s]
@@ -125,7 +125,7 @@ struct BiaxialResult {
 /// Shears a compacted sample (rows as in the file note).
 BiaxialResult shear_biaxial(BiaxialSample& s, const Config& c, const CalibrationLog& log);
 /// make_biaxial_sample, compact_biaxial, shear_biaxial.
-BiaxialResult run_biaxial(const Config& c, const std::string& kind, double mu, const CalibrationLog& log);
+BiaxialResult run_biaxial(const Config& c, PackingKind kind, double mu, const CalibrationLog& log);
 
 // ----------------------------------------------------------- basal friction
 
@@ -141,7 +141,7 @@ struct BasalRow {
 };
 
 struct BasalResult {
-    std::string kind;
+    PackingKind kind = PackingKind::clusters;
     double mu = 0, mu_bp = 0;
     std::size_t discs = 0;
     double block_length = 0, block_height = 0;  // the block as placed [m]
@@ -159,12 +159,12 @@ struct BasalResult {
 /// run_basal_friction.
 BasalResult run_basal_block(const Config& c, ParticleStore block, double mu, double mu_bp,
                             const CalibrationLog& log);
-BasalResult run_basal_friction(const Config& c, const std::string& kind, double mu_bp, const CalibrationLog& log);
+BasalResult run_basal_friction(const Config& c, PackingKind kind, double mu_bp, const CalibrationLog& log);
 
 // ------------------------------------------------------------------- repose
 
 struct ReposeResult {
-    std::string kind;
+    PackingKind kind = PackingKind::clusters;
     double mu = 0;
     std::size_t discs = 0;       // free discs
     double time = 0;             // simulated time to rest [s]
@@ -173,11 +173,11 @@ struct ReposeResult {
     ReposeFit fit;
 };
 
-ReposeResult run_repose(const Config& c, const std::string& kind, double mu, const CalibrationLog& log);
+ReposeResult run_repose(const Config& c, PackingKind kind, double mu, const CalibrationLog& log);
 
 /// A layer of `kind` with μ_i = mu settled under gravity in a box of the
 /// given length and cut to height (setup/packing.hpp), discs in x ∈ [0, length].
-ParticleStore settled_block(const Config& c, const std::string& kind, double mu, double length, double height,
+ParticleStore settled_block(const Config& c, PackingKind kind, double mu, double length, double height,
                             const CalibrationLog& log);
 
 /// Refuses (ConfigError, before anything is generated) a calibration whose
@@ -185,6 +185,6 @@ ParticleStore settled_block(const Config& c, const std::string& kind, double mu,
 void check_calibration_size(const Config& c);
 /// The packing of one calibration sample: c's packing with this kind, length
 /// and height [m], refused (ConfigError) when it is too large to run.
-PackingConfig calibration_sample(const Config& c, const std::string& kind, double length, double height);
+PackingConfig calibration_sample(const Config& c, PackingKind kind, double length, double height);
 
 }  // namespace orodem

@@ -56,7 +56,7 @@ ParticleStore generate_packing(const PackingConfig& pc, double density) {
     const double target_area = 0.9 * L * (pc.h0 + 3.0 * pc.r_max);  // disc area to generate [m²]
     double area = 0.0;
 
-    if (pc.kind == "hexagonal") {
+    if (pc.kind == PackingKind::hexagonal) {
         const double R = pc.r_max;
         const double dy = std::sqrt(3.0) * R;
         const int per_row = static_cast<int>(std::floor(L / (2.0 * R)));
@@ -68,7 +68,7 @@ ParticleStore generate_packing(const PackingConfig& pc, double density) {
                 area += std::numbers::pi * R * R;
             }
         }
-    } else if (pc.kind == "discs") {
+    } else if (pc.kind == PackingKind::discs) {
         const double spacing = 2.0 * pc.r_max * 1.05;
         const int ncol = std::max(1, static_cast<int>(std::floor(L / spacing)));
         const double jitter = 0.5 * (spacing - 2.0 * pc.r_max);

@@ -24,11 +24,11 @@ LawParams make_law(const MaterialConfig& m) {
     l.cohesion = m.cohesion;
     l.clamp_normal = m.clamp_normal;
     l.tangential = l.k_s > 0.0;
-    if (m.damping_kind == "coefficient") {
+    if (m.damping_kind == DampingKind::coefficient) {
         l.damp_mass_n = m.damping_normal;
         l.damp_mass_s = m.damping_tangential;
     } else {
-        const double zeta_n = m.damping_kind == "restitution"
+        const double zeta_n = m.damping_kind == DampingKind::restitution
                                   ? damping_ratio_from_restitution(m.damping_normal)
                                   : m.damping_normal;
         l.damp_sqrt_n = 2.0 * zeta_n * std::sqrt(l.k_n);
@@ -45,7 +45,7 @@ LawParams with_damping_ratio(LawParams law, double zeta) {
 }
 
 double lightest_mass(const Config& c) {
-    const double r = c.packing.kind == "hexagonal" ? c.packing.r_max : c.packing.r_min;
+    const double r = c.packing.kind == PackingKind::hexagonal ? c.packing.r_max : c.packing.r_min;
     return c.material.density * std::numbers::pi * r * r;
 }
 
@@ -58,7 +58,7 @@ double inertia_floor_mass(const Config& c) {
 double inertia_floor_mean_mass_ratio(const Config& c) {
     const double a = c.packing.r_min, b = c.packing.r_max;  // [m]
     const double f_r = std::min(c.wedge.inertia_floor * a, b);  // the floor's radius F [m]
-    if (inertia_floor_mass(c) == 0.0 || c.packing.kind == "hexagonal" || !(b > a) || !(f_r > a)) return 1.0;
+    if (inertia_floor_mass(c) == 0.0 || c.packing.kind == PackingKind::hexagonal || !(b > a) || !(f_r > a)) return 1.0;
     // (b - a) E[R²] and (b - a) E[max(R², F²)] for R uniform in [a, b].
     const double own = (b * b * b - a * a * a) / 3.0;
     const double floored = f_r * f_r * (f_r - a) + (b * b * b - f_r * f_r * f_r) / 3.0;
@@ -96,10 +96,10 @@ double estimated_disc_count(const PackingConfig& pc) {
     // generate_packing fills 0.9 L (h0 + 3 r_max) with discs of mean area
     // π E[r²], r uniform in [r_min, r_max] (all r_max for hexagonal).
     const double target_area = 0.9 * pc.length * (pc.h0 + 3.0 * pc.r_max);  // [m²]
-    const double a = pc.kind == "hexagonal" ? pc.r_max * pc.r_max
+    const double a = pc.kind == PackingKind::hexagonal ? pc.r_max * pc.r_max
                                             : (pc.r_min * pc.r_min + pc.r_min * pc.r_max + pc.r_max * pc.r_max) / 3.0;
     double n = target_area / (M_PI * a);
-    if (pc.kind == "hexagonal") n += pc.length / (2.0 * pc.r_max);  // whole rows: up to one more
+    if (pc.kind == PackingKind::hexagonal) n += pc.length / (2.0 * pc.r_max);  // whole rows: up to one more
     return std::isfinite(n) ? n : std::numeric_limits<double>::infinity();
 }
 

@@ -40,7 +40,7 @@ void check_base_dashpot(const Config& c, double dt) {
     // The Coulomb base's critically damped dashpot on the lightest disc:
     // explicit and stable for γ_s dt / m < 2, i.e. 2 ζ sqrt(k_s/m) dt < 2;
     // kept below 1 for a margin (the automatic dt gives about 0.12).
-    const bool coulomb = is_calibration(c) ? c.calibrate.base_law == "coulomb" : c.wedge.base_law == "coulomb";
+    const bool coulomb = (is_calibration(c) ? c.calibrate.base_law : c.wedge.base_law) == BaseLaw::coulomb;
     if (!coulomb) return;
     const double k_s = c.material.k_n * c.material.k_s_over_k_n;
     const double rate = 2.0 * kBaseDampingRatio * std::sqrt(k_s / lightest_inertial_mass(c)) * dt;
@@ -52,7 +52,7 @@ void check_base_dashpot(const Config& c, double dt) {
 }
 
 void check_wedge_base(const Config& c, double dt) {
-    if (c.wedge.base_law == "traction") check_belt_speed(c, dt);
+    if (c.wedge.base_law == BaseLaw::traction) check_belt_speed(c, dt);
     check_base_dashpot(c, dt);
 }
 
@@ -78,12 +78,12 @@ double inertial_number(const Config& c) {
     return shear_rate * d * std::sqrt(c.material.density / P);
 }
 
-double bulk_friction_deg(const std::string& kind, double mu_i) {
+double bulk_friction_deg(PackingKind kind, double mu_i) {
     // φ_cs [deg] at μ_i = 0, 0.1, 0.3, 0.5, 1.0 (biaxial tests, about 1,400 discs, I = 1e-3).
     static constexpr double kMu[] = {0.0, 0.1, 0.3, 0.5, 1.0};
     static constexpr double kDiscs[] = {7.2, 12.0, 15.6, 16.8, 16.4};
     static constexpr double kClusters[] = {9.1, 17.6, 24.4, 30.2, 28.4};
-    const double* phi = kind == "clusters" ? kClusters : kDiscs;
+    const double* phi = kind == PackingKind::clusters ? kClusters : kDiscs;
     if (mu_i >= kMu[4]) return phi[4];
     std::size_t k = 0;
     while (mu_i > kMu[k + 1]) ++k;
@@ -172,7 +172,7 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer, const RunNumb
         // traction law (as before the Coulomb base existed), a smooth wall
         // with a CoulombBase at rest under the default law.
         const bool coulomb_retro = experiment_of(c).retroside == Retroside::coulomb;
-        const bool rough = coulomb_retro && w.base_law == "traction";
+        const bool rough = coulomb_retro && w.base_law == BaseLaw::traction;
         Wall retro_base{{0.0, 0.0}, {x_retro + far, 0.0}, {}, 0.0, false, rough,
                         rough ? w.mu_br_over_mu_bp * w.mu_bp : 0.0};
         retro_base.open_ends = true;
@@ -195,13 +195,13 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer, const RunNumb
     sp.buffer_right = w.sleep_buffer * h0;     // the retroside
 
     std::unique_ptr<BasalBoundary> base;
-    if (w.base_law == "traction")
+    if (w.base_law == BaseLaw::traction)
         base = std::make_unique<ConveyorTraction>(kWallProBase, w.v, w.mu_bp, w.traction_gain, w.drag_gain);
     else
         base = std::make_unique<CoulombBase>(kWallProBase, w.v, w.mu_bp);
     ws.base = base.get();
     sim.boundaries.push_back(std::move(base));
-    if (experiment_of(c).retroside == Retroside::coulomb && w.base_law == "coulomb") {
+    if (experiment_of(c).retroside == Retroside::coulomb && w.base_law == BaseLaw::coulomb) {
         auto retro = std::make_unique<CoulombBase>(kWallRetro, 0.0, w.mu_br_over_mu_bp * w.mu_bp);
         ws.retro_base = retro.get();
         sim.boundaries.push_back(std::move(retro));

@@ -98,7 +98,7 @@ PlateEstimate plate_estimate(const Config& c);
 /// friction μ_i, from the biaxial calibration (docs/validation.md
 /// "Calibration"), interpolated linearly in μ_i [deg]. Hexagonal packings
 /// use the discs' row.
-double bulk_friction_deg(const std::string& kind, double mu_i);
+double bulk_friction_deg(PackingKind kind, double mu_i);
 /// Throws ConfigError when dt [s] is too long for the Coulomb base's dashpot
 /// (wedge or calibrate base_law = "coulomb"; nothing for the traction law).
 void check_base_dashpot(const Config& c, double dt);

@@ -537,8 +537,10 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
     // On the traction base 2, 5, 8 ± 0.1: differences of 3 and 6 deg, 21 and 42 se: not alike.
     EXPECT_HAS(out, "traction base (the same seeds, to S = 3) | alpha, 1 <= S < 3: mu_bp 0.1: 2.00 ± 0.10 (2 runs); "
                     "mu_bp 0.3: 5.00 ± 0.10 (2 runs); mu_bp 0.5: 8.00 ± 0.10 (2 runs) | not reproduced |");
-    // Ordered: +4 deg at 4 / sqrt(0.5² + 0.5²) = 5.7 standard errors, both steps.
-    EXPECT_HAS(out, "0.3 - 0.1 +4.00 (5.7 se), 0.5 - 0.3 +4.00 (5.7 se) | reproduced |");
+    // Ordered: +4 deg, se sqrt(0.5² + 0.5²) = 0.707 with Welch's 2 degrees of freedom (t 4.303): the 95%
+    // interval 4 ± 3.04 lies above 0 in both steps; p = 0.03; detectable (4.303 + 1.061) 0.707 = 3.79.
+    EXPECT_HAS(out, "0.3 - 0.1 +4.00 [+0.96, +7.04], p = 0.03, detectable 3.79, 0.5 - 0.3 +4.00 [+0.96, +7.04], "
+                    "p = 0.03, detectable 3.79 | reproduced |");
     // H = 0.4 S^0.5 exactly: b = 0.5 with no spread; D = 95%.
     EXPECT_HAS(out, "mu_bp 0.5: 0.500 ± 0.000 (2 runs) | reproduced |");
     EXPECT_HAS(out, "mu_bp 0.5: 95.0 ± 0.0 (2 runs) | reproduced |");
@@ -548,10 +550,12 @@ TEST_F(PlotRender, ValidateFindingsVerdictsFollowTheirRules) {
                     "runs | no runs |");
     // Beta alike (20 ± 0.35 in each) and steeper than alpha in every group.
     EXPECT_HAS(out, "beta - alpha: 0.1 +18.00");
-    // Hexagonal 3 h0 ahead (s.e. 0): 2.0 and 2.5 h0 beyond the random packings
-    // at 2.0 / 0.1 = 20 and 25 standard errors; an output with no thrust is left out.
+    // Hexagonal 3 h0 ahead (deterministic, s.e. 0): 2.0 and 2.5 h0 beyond the random packings, s.e. 0.1 with
+    // one degree of freedom (t 12.71): intervals 2.0 ± 1.27 and 2.5 ± 1.27, above 0; an output with no thrust is
+    // left out.
     EXPECT_HAS(out, "hexagonal 3.00 ± 0.00 (1 run); discs 1.00 ± 0.10 (2 runs); clusters 0.50 ± 0.10 (2 runs); "
-                    "hexagonal - discs +2.00 (20.0 se), hexagonal - clusters +2.50 (25.0 se)");
+                    "hexagonal - discs +2.00 [+0.73, +3.27], p = 0.032, detectable 1.41, hexagonal - clusters "
+                    "+2.50 [+1.23, +3.77], p = 0.025, detectable 1.41");
     EXPECT_HAS(out, "clusters 8.00 ± 0.00 (2 runs) | reproduced |");
     // The push table: 0.50 ± 0.10 against 1.2 (ratio 0.42), 2.50 against 1.2 (2.08).
     EXPECT_HAS(out, "| exp1_mubp0.1 | 0.50 ± 0.10 (2 runs) | 0.800 | 1.20 | 0.42 |");

@@ -55,7 +55,21 @@ ParticleStore prepare_layer(const Config& c, const std::string& dir, RunLog& log
     sim.initialize();
     log.line(fmt::format("generated {} discs ({}); settling", sim.particles.size(), name_of(c.packing.kind)));
     const auto t0 = std::chrono::steady_clock::now();
+    // The thread count between reports, as WedgeRun chooses it between chunks (run/thread_governor.hpp).
+    const int requested = omp_get_max_threads();
+    const bool adapt = requested > 1 && ThreadGovernor::enabled_by_environment();
+    ThreadGovernor threads(requested);
+    auto last_report = t0;
+    std::uint64_t last_step = 0;
     const SettleProgress done = settle(sim, c.packing, c.run.output_interval, [&](const SettleProgress& s) {
+        if (adapt) {
+            const auto now = std::chrono::steady_clock::now();
+            threads.record(s.step - last_step, std::chrono::duration<double>(now - last_report).count());
+            last_report = now;
+            last_step = s.step;
+            omp_set_num_threads(threads.threads());
+            say_thread_changes(threads, log, obs);
+        }
         if (const int sig = obs.stop_requested()) {
             const std::string msg = fmt::format(
                 "by {} while settling the packing (step {}, {:.0f} s); settling is not checkpointed, so it "
@@ -77,6 +91,7 @@ ParticleStore prepare_layer(const Config& c, const std::string& dir, RunLog& log
                                  sim.particles.size(), s.time, s.step, s.ke_ratio, c.packing.settle_ke_ratio));
     });
     obs.progress_done();
+    omp_set_num_threads(requested);
     const double secs = seconds_since(t0);
     log.line(fmt::format("settled after {} steps ({:.4g} s simulated, {:.1f} s wall, {:.3g} disc-steps/s); "
                          "E_kin/(M g h0) = {:.3g}, max overlap/R = {:.4f}",

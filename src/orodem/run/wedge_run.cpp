@@ -1,5 +1,7 @@
 #include "orodem/run/wedge_run.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <csignal>
@@ -87,7 +89,9 @@ int WedgeRun::run() {
 WedgeRun::WedgeRun(const Config& c, WedgeSetup& w, const std::string& dir, RunLog& log, RunObserver& observer,
                    const RunLoopState* resumed)
     : c_(c), w_(w), sim_(w.sim), dir_(dir), log_(log), obs_(observer), resumed_(resumed != nullptr),
-      h0_(c.packing.h0), cfg_hash_(config_hash(c)) {
+      h0_(c.packing.h0), cfg_hash_(config_hash(c)),
+      adapt_threads_(omp_get_max_threads() > 1 && ThreadGovernor::enabled_by_environment()),
+      threads_(omp_get_max_threads()) {
     if (resumed) {
         st_ = *resumed;
         w_.profile.y_mean = st_.surface_y_mean;
@@ -183,7 +187,16 @@ std::uint64_t WedgeRun::next_output_step() const {
 }
 
 void WedgeRun::advance_to(std::uint64_t step) {
-    sim_.advance(step - sim_.step_count);
+    const std::uint64_t n = step - sim_.step_count;
+    if (!adapt_threads_) {
+        sim_.advance(n);
+    } else {
+        omp_set_num_threads(threads_.threads());
+        const auto t0 = std::chrono::steady_clock::now();
+        sim_.advance(n);
+        threads_.record(n, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        say_thread_changes(threads_, log_, obs_);
+    }
     obs_.progress({S(), c_.wedge.s_max, first_step_, sim_.step_count, total_steps_, elapsed(), false});
 }
 

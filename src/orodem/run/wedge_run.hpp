@@ -22,6 +22,7 @@
 #include "orodem/analysis/strain.hpp"
 #include "orodem/engine/health.hpp"
 #include "orodem/io/checkpoint.hpp"
+#include "orodem/run/thread_governor.hpp"
 #include "orodem/io/config.hpp"
 #include "orodem/io/files.hpp"
 #include "orodem/render/particle_view.hpp"
@@ -84,6 +85,10 @@ private:
     const bool resumed_;
     const double h0_;                   // [m]
     const std::uint64_t cfg_hash_;
+    // The thread count of each chunk (run/thread_governor.hpp); off with
+    // ORODEM_ADAPT_THREADS=0 or one thread.
+    const bool adapt_threads_;
+    ThreadGovernor threads_;
     RunLoopState st_;
     bool initial_overlap_allowed_ = false;  // run.allow_initial_overlap used: no overlap limit at step 0
     std::size_t series_columns_;        // columns of series.csv (an older run keeps its own)

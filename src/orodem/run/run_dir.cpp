@@ -3,11 +3,15 @@
 #include <sys/statvfs.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdlib>
 #include <filesystem>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "orodem/core/error.hpp"
+#include "orodem/io/checkpoint.hpp"
 #include "orodem/io/files.hpp"
 
 namespace fs = std::filesystem;
@@ -40,6 +44,71 @@ void require_run_dir(const std::string& dir) {
         throw ConfigError(fmt::format("'{}': not a run directory (not a directory)", dir));
     if (!fs::exists(fs::path(dir) / "config.toml", ec))
         throw ConfigError(fmt::format("'{}': not a run directory (no config.toml)", dir));
+}
+
+namespace {
+
+/// The step of series.csv's last row (its leading number); NaN when there is none.
+double last_series_step(const std::string& path) {
+    if (!fs::exists(path)) return std::nan("");
+    const std::string series = read_file(path);
+    const std::size_t end = series.find_last_not_of('\n');
+    const std::size_t begin = end == std::string::npos ? std::string::npos : series.rfind('\n', end);
+    if (begin == std::string::npos) return std::nan("");
+    const char* row = series.c_str() + begin + 1;
+    char* after = nullptr;
+    const double v = std::strtod(row, &after);
+    return after == row ? std::nan("") : v;
+}
+
+}  // namespace
+
+RunStatus run_state(const std::string& dir) {
+    require_run_dir(dir);
+    RunStatus r;
+    r.config = load_config(dir + "/config.toml");
+    const Config& c = r.config;
+    if (!is_wedge(c)) {
+        // A settled layer is not checkpointed: done when its packing is written, else settled again.
+        r.state = fs::exists(dir + "/packing.bin") ? RunState::finished : RunState::not_started;
+        return r;
+    }
+    if (!fs::exists(dir + "/log.txt")) return r;  // a sweep writes every member's config.toml first
+    // events.csv (or, for a run started before it existed, log.txt read the
+    // same way): the timestep, the last output (S and rate), the last event
+    // that starts or ends a piece, and the wall time of the pieces that say it.
+    const std::vector<EventRecord> events = read_events(dir);
+    std::vector<double> rates;  // steps/s of each output, in order
+    for (const EventRecord& e : events) {
+        if (e.kind == RunEvent::start && std::isfinite(e.dt)) r.dt = e.dt;
+        if (e.kind == RunEvent::output) {
+            r.S = e.S;
+            rates.push_back(e.steps_per_s);
+        }
+        if (e.kind == RunEvent::start || e.kind == RunEvent::resume) ++r.pieces;
+        if (ends_a_piece(e.kind) && std::isfinite(e.wall_s)) {
+            r.wall_s += e.wall_s;
+            ++r.pieces_timed;
+        }
+    }
+    if (const EventRecord* last = last_piece_event(events)) r.last = *last;
+    if (!r.last || !ends_a_piece(r.last->kind)) r.state = RunState::no_end_line;
+    else if (r.last->kind == RunEvent::finished) r.state = RunState::finished;
+    else if (r.last->kind == RunEvent::unstable || r.last->kind == RunEvent::stopped) r.state = RunState::failed;
+    else r.state = RunState::interrupted;
+    r.last_step = last_series_step(dir + "/series.csv");
+    const std::size_t n = std::min<std::size_t>(rates.size(), 3);
+    std::vector<double> last_rates(rates.end() - static_cast<std::ptrdiff_t>(n), rates.end());
+    std::sort(last_rates.begin(), last_rates.end());
+    r.rate = last_rates.empty() ? std::nan("") : last_rates[n / 2];
+    r.rate_outputs = static_cast<int>(n);
+    if (std::isfinite(r.dt)) r.total_steps = c.wedge.s_max * c.packing.h0 / (c.wedge.v * r.dt);
+    const auto checkpoints = list_checkpoints(dir + "/checkpoint");  // newest first
+    if (!checkpoints.empty()) r.newest_checkpoint = checkpoints.front();
+    std::error_code ec;
+    const auto written = fs::last_write_time(dir + "/log.txt", ec);
+    if (!ec) r.log_age_s = std::chrono::duration<double>(fs::file_time_type::clock::now() - written).count();
+    return r;
 }
 
 std::size_t series_rows(const std::string& path) {

@@ -181,6 +181,12 @@ bool slurm_state_active(const std::string& state) {
     return std::any_of(std::begin(active), std::end(active), [&](const char* a) { return state == a; });
 }
 
+bool slurm_state_pending(const std::string& state) { return state == "PENDING"; }
+
+bool slurm_state_failed(const std::string& state) {
+    return state == "FAILED" || state == "OUT_OF_MEMORY" || state == "NODE_FAIL";
+}
+
 SlurmQueue slurm_task_states(const std::vector<std::string>& ids) {
     SlurmQueue q;
     if (ids.empty()) return q;

@@ -85,11 +85,21 @@ struct SlurmQueue {
     bool squeue = false;  // squeue answered
     bool sacct = false;   // sacct answered (accounting on)
     std::map<int, SlurmTaskState> tasks;  // by array task id, from the newest job that has it
+    /// Task k's state; nullptr when Slurm knows no such task.
+    const SlurmTaskState* task(std::size_t k) const {
+        const auto at = tasks.find(static_cast<int>(k));
+        return at == tasks.end() ? nullptr : &at->second;
+    }
 };
 SlurmQueue slurm_task_states(const std::vector<std::string>& ids);
 
 /// Whether a Slurm state means the task is still in the queue (pending,
 /// running, completing, suspended, ...).
 bool slurm_state_active(const std::string& state);
+/// Whether it is waiting for resources (PENDING).
+bool slurm_state_pending(const std::string& state);
+/// Whether the task left the queue failed by Slurm's account (FAILED,
+/// OUT_OF_MEMORY, NODE_FAIL); a time limit or a cancel is no failure.
+bool slurm_state_failed(const std::string& state);
 
 }  // namespace orodem

@@ -475,3 +475,18 @@ TEST(Config, LoadConfigOfMissingFileIsRefused) {
         EXPECT_HAS(std::string(e.what()), "/nonexistent/dir/orodem-missing.toml");
     }
 }
+
+TEST(Config, MisspelledKeysTablesAndValuesGetADidYouMean) {
+    EXPECT_HAS(refusal(kBase + "[material]\nk_nn = 1e8\n"), "did you mean 'material.k_n'?");
+    EXPECT_HAS(refusal(kBase + "[materal]\nk_n = 1e8\n"), "did you mean 'material'?");
+    EXPECT_HAS(refusal(kBase + "[packing]\nkind = \"cluster\"\n"), "did you mean 'clusters'?");
+    // Nothing near: no suggestion.
+    EXPECT_EQ(refusal(kBase + "[material]\nzzzzzzzz = 1\n").find("did you mean"), std::string::npos);
+}
+
+TEST(Config, ValuesAreEchoedAsTyped) {
+    // A double is echoed in its shortest round-trip form, as it was typed, not 0.29999999999999999.
+    const std::string msg = refusal(kBase + "[material]\nmu = 0.3\nk_nn = 0.3\n");
+    EXPECT_HAS(msg, "'material.k_nn' = 0.3;");
+    EXPECT_HAS(refusal(kBase + "[material]\ndensity = -0.1\n"), "= -0.1:");
+}

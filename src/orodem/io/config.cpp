@@ -270,8 +270,8 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
     for (auto&& [k, v] : root) {
         static const std::set<std::string> known = {"run", "wedge", "material", "packing", "numerics", "calibrate"};
         if (!known.count(std::string(k.str())))
-            throw ConfigError(fmt::format("{}: unknown key '{}' = {}; allowed top-level tables: run, wedge, material, packing, numerics, calibrate",
-                                          where(file, k.source()), k.str(), show(v)));
+            throw ConfigError(fmt::format("{}: unknown key '{}' = {}{}; allowed top-level tables: run, wedge, material, packing, numerics, calibrate",
+                                          where(file, k.source()), k.str(), show(v), did_you_mean(k.str(), known)));
     }
 
     {

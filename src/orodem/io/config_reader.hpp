@@ -5,12 +5,14 @@
 // apart from io/config.cpp so that the loader reads as the list of sections.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <set>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -31,10 +33,41 @@ inline std::string where(const std::string& file, const toml::source_region& src
 inline std::string show(const toml::node& n) {
     std::ostringstream os;
     if (auto s = n.as_string()) os << '"' << s->get() << '"';
+    else if (auto f = n.as_floating_point()) os << fmt::format("{}", f->get());  // shortest round trip: 0.3, not 0.29999999999999999
     else if (n.is_table()) os << "a table";
     else if (n.is_array()) os << "an array";
     else n.visit([&](auto&& v) { os << v; });
     return os.str();
+}
+
+/// The Levenshtein distance of a and b (the edits that turn one into the other).
+inline std::size_t edit_distance(std::string_view a, std::string_view b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diag = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diag = up;
+        }
+    }
+    return row[b.size()];
+}
+
+/// "; did you mean 'x'?" for the candidate nearest to `key` when it is near (a third of its letters, at least
+/// two), else "".
+template <class Names>
+std::string did_you_mean(std::string_view key, const Names& candidates, std::string_view prefix = "") {
+    std::string best;
+    std::size_t best_d = std::max<std::size_t>(2, key.size() / 3) + 1;
+    for (const auto& c : candidates) {
+        const std::string_view name(c);
+        const std::size_t d = edit_distance(key, name);
+        if (d < best_d) best_d = d, best = std::string(name);
+    }
+    return best.empty() ? std::string() : fmt::format("; did you mean '{}{}'?", prefix, best);
 }
 
 inline const char* type_name(const toml::node& n) {
@@ -141,7 +174,7 @@ public:
             v = s->get();
             bool ok = false;
             for (const char* a : allowed) ok = ok || v == a;
-            if (!ok) fail(*n, key, fmt::format("must be one of {}", list));
+            if (!ok) fail(*n, key, fmt::format("must be one of {}{}", list, did_you_mean(v, allowed)));
         }
         out_.insert_or_assign(key, v);
         return v;
@@ -235,10 +268,14 @@ public:
         for (auto&& [k, v] : *t_) {
             if (used_.count(std::string(k.str()))) continue;
             std::string allowed;
-            for (auto&& [ok, ov] : out_) allowed += fmt::format("{}{}", allowed.empty() ? "" : ", ", ok.str());
-            throw ConfigError(fmt::format("{}: unknown key '{}{}' = {}; allowed keys in [{}]: {}",
+            std::vector<std::string> names;
+            for (auto&& [ok, ov] : out_) {
+                allowed += fmt::format("{}{}", allowed.empty() ? "" : ", ", ok.str());
+                names.emplace_back(ok.str());
+            }
+            throw ConfigError(fmt::format("{}: unknown key '{}{}' = {}{}; allowed keys in [{}]: {}",
                                           where(file_, k.source().begin.line ? k.source() : v.source()), prefix_, k.str(), show(v),
-                                          prefix_.substr(0, prefix_.size() - 1), allowed));
+                                          did_you_mean(k.str(), names, prefix_), prefix_.substr(0, prefix_.size() - 1), allowed));
         }
     }
 

@@ -34,15 +34,16 @@ int cmd_faults(const std::string& run_dir, double at, bool csv, bool recompute) 
     fmt::print("faults of {} at S = {:.3f}{}\n", run_dir, S, f.from_snapshots ? " (computed from the snapshots)" : "");
     fmt::print("this output's faults show stage {} (series.csv: the stage reached)\n",
                kStage[classify_stage(faults, 1.0)]);
-    fmt::print("active: {} pro-vergent, {} retro-vergent; frontal thrust root at {} h0 from the S point\n", n.pro,
-               n.retro, std::isnan(n.front_x) ? std::string("-") : fmt::format("{:.2f}", n.front_x));
+    fmt::print("active: {} pro-vergent, {} retro-vergent; {}\n", n.pro, n.retro,
+               std::isnan(n.front_x) ? std::string("no frontal thrust")
+                                     : fmt::format("frontal thrust root at {:.2f} h0 from the S point", n.front_x));
     double x_d = std::nan("");  // needs the snapshots, which a user may have deleted
     try {
         x_d = run_decoupling_at(run_dir, S);
     } catch (const IoError&) {
     }
-    fmt::print("belt decoupling point (the base layer's speed falls to half the belt's) at {} h0 from the S point\n",
-               std::isnan(x_d) ? std::string("-") : fmt::format("{:.2f}", x_d));
+    fmt::print("belt decoupling point (the base layer's speed falls to half the belt's): {}\n",
+               std::isnan(x_d) ? std::string("none found") : fmt::format("{:.2f} h0 from the S point", x_d));
     fmt::print("{:>4}  {:<6} {:>6} {:>8} {:>10} {:>10} {:>9} {:>9} {:>10} {:>9} {:>8} {:>8}\n", "id", "verg.",
                "active", "dip(deg)", "root x/h0", "root y/h0", "tip x/h0", "tip y/h0", "length/h0", "width/h0",
                "slip/h0", "since S");

@@ -112,9 +112,15 @@ class Run:
                 for d in root.iter("DataSet")]
 
     def snapshot_path(self, S):
-        """The file of the snapshot whose S is nearest the given one."""
+        """The file of the snapshot whose S is nearest the given one. An S beyond the run's snapshots (by more
+        than half their spacing at that end) or NaN raises ValueError, as `orodem render --at` refuses it."""
         if not self._snapshots:
             raise LookupError(f"{self.path}: no snapshots (run.pvd)")
+        Ss = sorted(e[0] for e in self._snapshots)
+        tol_lo = 0.5 * (Ss[1] - Ss[0]) if len(Ss) > 1 else 0.5
+        tol_hi = 0.5 * (Ss[-1] - Ss[-2]) if len(Ss) > 1 else 0.5
+        if not (Ss[0] - tol_lo <= S <= Ss[-1] + tol_hi):
+            raise ValueError(f"{self.path}: S = {S}: the run's snapshots are at S = {Ss[0]:.2f} to {Ss[-1]:.2f}")
         return min(self._snapshots, key=lambda e: abs(e[0] - S))[1]
 
     def snapshot(self, S):

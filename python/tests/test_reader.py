@@ -115,3 +115,13 @@ def test_what_is_not_a_run_is_refused(tmp_path):
     bad.write_text("<VTKFile/>")
     with pytest.raises(ValueError, match="no appended data"):
         orodem.read_vtu(bad)
+
+
+def test_snapshot_beyond_the_run_is_refused(run_dir):
+    r = orodem.open_run(run_dir)
+    last = r.outputs[-1]
+    with pytest.raises(ValueError, match="snapshots are at S"):
+        r.snapshot(last + 5.0)
+    with pytest.raises(ValueError):
+        r.snapshot(float("nan"))
+    assert r.snapshot_path(last) == r.snapshot_path(last + 0.01)

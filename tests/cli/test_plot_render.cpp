@@ -221,6 +221,12 @@ TEST_F(PlotRender, RenderRedrawsTheSnapshots) {
     EXPECT_EQ(decode_png(work_ / "small" / "horizons_S00.000.png").width, 640);
     EXPECT_EQ(orodem("render r1 --format gif").status, 2);
     EXPECT_EQ(orodem("render r1 --at one").status, 2);
+    // An S beyond the run's snapshots (S = 0 and 1 here) is refused with the range, not drawn as the last one.
+    r = orodem("render r1 --at 7 --dir beyond");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_HAS(r.err, "--at 7: the run's outputs are at S = 0.00 to 1.00");
+    EXPECT_FALSE(fs::exists(work_ / "beyond"));
+    EXPECT_EQ(orodem("render r1 --at 1.1 --dir near").status, 0);  // within half a spacing of the last: the last
     // Snapshots without strain arrays (an orodem before strain maps): no
     // strain map, said; a strain figure or movie stops with one line, exit
     // 2, nothing written.

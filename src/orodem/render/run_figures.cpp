@@ -1,5 +1,7 @@
 #include "orodem/render/run_figures.hpp"
 
+#include "orodem/core/nearest.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -58,13 +60,10 @@ Frame read_frame(const SavedRun& run, std::size_t k) {
 }
 
 std::vector<std::size_t> nearest_snapshots(const std::vector<Snapshot>& snaps, const std::vector<double>& at) {
+    std::vector<double> S_values;
+    for (const Snapshot& s : snaps) S_values.push_back(s.S);
     std::vector<std::size_t> chosen;
-    for (double S : at) {
-        std::size_t best = 0;
-        for (std::size_t k = 1; k < snaps.size(); ++k)
-            if (std::fabs(snaps[k].S - S) < std::fabs(snaps[best].S - S)) best = k;
-        chosen.push_back(best);
-    }
+    for (double S : at) chosen.push_back(nearest_output(S_values, S, "--at"));
     std::sort(chosen.begin(), chosen.end());
     chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
     return chosen;

@@ -1,5 +1,7 @@
 #include "orodem/run/run_faults.hpp"
 
+#include "orodem/core/nearest.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -77,9 +79,7 @@ RunFaults run_faults(const std::string& dir, bool from_snapshots) {
 
 std::vector<Fault> faults_at(const RunFaults& f, double S, double* S_out) {
     if (f.outputs.empty()) throw IoError("the run has no output yet");
-    double best = f.outputs.front();
-    for (double s : f.outputs)
-        if (std::fabs(s - S) < std::fabs(best - S)) best = s;
+    const double best = f.outputs[nearest_output(f.outputs, S, "--at")];
     if (S_out) *S_out = best;
     std::vector<Fault> at;
     for (const FaultRow& r : f.rows)

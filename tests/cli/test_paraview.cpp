@@ -1,7 +1,8 @@
-// A wedge run's ParaView output opened by VTK's own Python reader (python3-vtk9):
+// A wedge run's ParaView output opened by VTK's own Python reader (python3-vtk9,
+// or the same vtk module of python3-paraview where ParaView is installed):
 // every snapshot listed in run.pvd is read by vtkXMLUnstructuredGridReader
-// and carries the point data of SPEC §4. Skipped with a message when
-// /usr/bin/python3 has no vtk module.
+// and carries the point data of SPEC §4; and scripts/paraview-view under
+// pvbatch. Each skips with a message where its program is missing.
 #include <gtest/gtest.h>
 
 #include "cli/cli_util.hpp"
@@ -50,5 +51,22 @@ print("ok", len(sets), "snapshots,", g.GetNumberOfPoints(), "points, S =", [floa
     ASSERT_EQ(run("/usr/bin/python3 " + (dir / "check.py").string() + " " + (dir / "r").string(), &out), 0) << out;
     EXPECT_NE(out.find("ok 3 snapshots"), std::string::npos) << out;
     std::printf("%s", out.c_str());
+    fs::remove_all(dir);
+}
+
+TEST(ParaView, ParaviewViewScriptDrawsARunWithPvbatch) {
+    // scripts/paraview-view under pvbatch (ParaView's Python, no window): a PNG of the last snapshot, discs at
+    // their true size. Skipped where ParaView is not installed.
+    if (run("command -v pvbatch >/dev/null 2>&1") != 0) GTEST_SKIP() << "pvbatch (ParaView) not installed";
+    char tmpl[] = "/tmp/orodem-pvview-XXXXXX";
+    ASSERT_NE(mkdtemp(tmpl), nullptr);
+    const fs::path dir = tmpl;
+    write_tiny_exp1(dir);
+    std::string out;
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " run " + (dir / "tiny.toml").string() + " --out " + (dir / "r").string() +
+                      " --threads 1", &out), 0) << out;
+    ASSERT_EQ(run("pvbatch " + std::string(ORODEM_SOURCE_DIR) + "/scripts/paraview-view " + (dir / "r").string() +
+                      " --color side --screenshot " + (dir / "view.png").string() + " 2>&1", &out), 0) << out;
+    EXPECT_GT(fs::file_size(dir / "view.png"), 1000u) << out;
     fs::remove_all(dir);
 }

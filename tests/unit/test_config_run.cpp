@@ -244,3 +244,26 @@ TEST(PlateEstimate, BulkFrictionFromTheCalibrationTableAndTheFrontFromTheTaper) 
     c = parse_config(kWedge + "[wedge]\nmu_bp = 0.8\n", "run.toml", {});
     EXPECT_DOUBLE_EQ(plate_estimate(c).phi_b_deg, 24.4 - 0.5);
 }
+
+TEST(AbsurdValues, DerivedNumbersOutOfAnyRunAreRefusedBeforeAnythingIsWritten) {
+    // Each passes its key's own range but makes the run's numbers absurd (docs/reliability.md "Absurd values"):
+    // refused by derive_run_numbers, which `orodem check` and `orodem run` call before writing, with the key named.
+    const std::pair<const char*, const char*> cases[] = {
+        {"wedge.v=1e-308", "steps; at most"},        {"wedge.v=1e-9", "steps; at most"},
+        {"wedge.output_ds=5e-324", "outputs"},       {"wedge.v=1e308", "more than half packing.r_min"},
+        {"numerics.gravity=1e308", "at most 1000"}, {"numerics.dt=5e-324", "at least 1e-12 s"},
+        {"material.k_n=1e308", "at least 1e-12 s"}, {"numerics.skin=1000", "at most 2 packing.r_max"},
+        {"numerics.gravity=0", "must settle under gravity"},
+    };
+    for (const auto& [kv, why] : cases) {
+        const Config c = parse_config(kWedge, "run.toml", {parse_override(kv)});
+        try {
+            derive_run_numbers(c);
+            ADD_FAILURE() << kv << " was accepted";
+        } catch (const ConfigError& e) {
+            EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << kv << ": " << e.what();
+            EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << kv << ": one line";
+        }
+    }
+    EXPECT_NO_THROW(derive_run_numbers(parse_config(kWedge, "run.toml", {})));
+}

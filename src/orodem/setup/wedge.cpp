@@ -58,9 +58,57 @@ void check_wedge_base(const Config& c, double dt) {
 
 void check_wedge_base(const Config& c) { check_wedge_base(c, timestep_for(c).dt); }
 
+namespace {
+
+/// Refuses (ConfigError, exit 2, before anything is written) the values that
+/// pass each key's own range but make the run's derived numbers absurd: a
+/// timestep that is no longer a number of the problem's scale (k_n, dt), a
+/// run of more steps than any machine finishes, outputs closer than a step,
+/// a belt that jumps more than half the smallest radius a step, no gravity
+/// for a layer that must settle, an extreme gravity, a skin wider than the
+/// discs. The limits are far outside every meaningful run
+/// (docs/reliability.md "Absurd values").
+void check_derived_numbers(const Config& c, const TimestepInfo& t) {
+    constexpr double kMaxSteps = 1e11;    // some 10 days at 1e5 steps/s [-]
+    constexpr double kMaxOutputs = 1e5;   // [-]
+    constexpr double kMaxGravity = 1e3;   // [m/s²]
+    auto refuse = [&](const std::string& why) { throw ConfigError(fmt::format("{}: {}", c.path, why)); };
+    if (!(t.dt >= 1e-12) || !std::isfinite(t.dt))
+        refuse(fmt::format("the timestep would be dt = {:g} s (numerics.dt, or automatic from material.k_n = {:g} N/m and "
+                           "the lightest disc); it must be at least 1e-12 s",
+                           t.dt, c.material.k_n));
+    const bool settles = !is_calibration(c);
+    if (settles && !(c.numerics.gravity > 0.0))
+        refuse("numerics.gravity = 0: the layer must settle under gravity; give g > 0 (9.81 m/s² on Earth)");
+    if (c.numerics.gravity > kMaxGravity)
+        refuse(fmt::format("numerics.gravity = {:g} m/s²: at most {:g}", c.numerics.gravity, kMaxGravity));
+    if (c.numerics.skin > 2.0 * c.packing.r_max)
+        refuse(fmt::format("numerics.skin = {:g} m: at most 2 packing.r_max = {:g} m (0 = 0.4 r_min)", c.numerics.skin,
+                           2.0 * c.packing.r_max));
+    if (!is_wedge(c)) return;
+    const WedgeConfig& w = c.wedge;
+    const double steps = w.s_max * c.packing.h0 / (w.v * t.dt), outputs = w.s_max / w.output_ds;
+    if (!(steps <= kMaxSteps))
+        refuse(fmt::format("wedge.s_max = {:g} at wedge.v = {:g} m/s and dt = {:.3g} s is {:.3g} steps; at most {:.0e}: "
+                           "raise wedge.v or numerics.dt (orodem check prints the run time)",
+                           w.s_max, w.v, t.dt, steps, kMaxSteps));
+    if (outputs > kMaxOutputs)
+        refuse(fmt::format("wedge.output_ds = {:g} gives {:.3g} outputs to S = {:g}; at most {:.0e}", w.output_ds, outputs,
+                           w.s_max, kMaxOutputs));
+    if (w.v * t.dt > 0.5 * c.packing.r_min)
+        refuse(fmt::format("wedge.v = {:g} m/s moves the belt {:.3g} m a step, more than half packing.r_min ({:g} m); "
+                           "lower wedge.v or numerics.dt", w.v, w.v * t.dt, 0.5 * c.packing.r_min));
+    if (w.output_ds * c.packing.h0 < w.v * t.dt)
+        refuse(fmt::format("wedge.output_ds = {:g} is less than one step of the belt ({:.3g} of h0); raise it",
+                           w.output_ds, w.v * t.dt / c.packing.h0));
+}
+
+}  // namespace
+
 RunNumbers derive_run_numbers(const Config& c) {
     RunNumbers n;
     n.timestep = timestep_for(c);
+    check_derived_numbers(c, n.timestep);
     n.belt_speed_limit = belt_speed_limit(c, n.timestep.dt);
     if (is_wedge(c)) {
         check_wedge_base(c, n.timestep.dt);

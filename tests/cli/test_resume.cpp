@@ -290,7 +290,7 @@ TEST_F(Resume, AFullDiskGivesExit4AndNoCorruptCheckpoint) {
     if (fs::exists(run / "checkpoint"))
         for (const auto& e : fs::directory_iterator(run / "checkpoint")) {
             const std::string name = e.path().filename().string();
-            if (name.size() > 4 && name.substr(name.size() - 4) == ".tmp") bad.push_back(name + " (left-over temporary)");
+            if (name.find(".tmp-") != std::string::npos) bad.push_back(name + " (left-over temporary)");
         }
     for (const auto& [step, path] : orodem::list_checkpoints((run / "checkpoint").string())) {
         try {

@@ -284,9 +284,13 @@ TEST(Checkpoint, AFailedWriteLeavesTheOlderCheckpointsIntactAndNoHalfFile) {
     a.sim.advance(50);
     write_checkpoint(dir, 150, encode_checkpoint(a.sim, some_run_state(a.sim), hash));
     a.sim.advance(50);
-    // The temporary name is taken by a directory: the write fails (works as root too).
-    fs::create_directories(dir + "/ckpt-000000000200.bin.tmp");
+    // The final name is taken by a non-empty directory: the rename into place fails (works as root too), and
+    // the temporary is removed.
+    fs::create_directories(dir + "/ckpt-000000000200.bin/x");
     EXPECT_THROW(write_checkpoint(dir, 200, encode_checkpoint(a.sim, some_run_state(a.sim), hash)), IoError);
+    fs::remove_all(dir + "/ckpt-000000000200.bin");
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
     const auto files = list_checkpoints(dir);
     ASSERT_EQ(files.size(), 2u);
     EXPECT_EQ(files[0].first, 150u);

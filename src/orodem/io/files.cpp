@@ -1,5 +1,6 @@
 #include "orodem/io/files.hpp"
 
+#include <atomic>
 #include <cerrno>
 #include <filesystem>
 #include <fstream>
@@ -15,9 +16,16 @@
 
 namespace orodem {
 
+std::string temporary_name(const std::string& path) {
+    // Unique per process and per call: two processes writing the same file
+    // (two runs settling the same packing into the cache) never share one.
+    static std::atomic<unsigned> counter{0};
+    return fmt::format("{}.tmp-{}-{}", path, ::getpid(), counter.fetch_add(1));
+}
+
 void write_file_atomic(const std::string& path, std::string_view bytes) {
-    const std::string tmp = path + ".tmp";
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    const std::string tmp = temporary_name(path);
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd < 0) throw_io_error("cannot create", tmp);
     std::size_t done = 0;
     while (done < bytes.size()) {

@@ -1,5 +1,5 @@
-// Checked file writing. Every write goes to "<path>.tmp", is flushed and
-// fsync'ed, then renamed over <path>, so a crash or a full disk never leaves
+// Checked file writing. Every write goes to "<path>.tmp-<pid>-<n>" (unique to the
+// process and the call), is flushed and fsync'ed, then renamed over <path>, so a crash or a full disk never leaves
 // a half-written file under the final name. Failures throw IoError naming the
 // path and the OS error.
 #pragma once

@@ -1,5 +1,6 @@
 #include "orodem/io/packing_file.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -52,7 +53,7 @@ std::string packing_cache_path(const Config& c) {
     return fmt::format("{}/packing-{:016x}.bin", packing_cache_dir(c), packing_key(c));
 }
 
-void save_packing(const std::string& path, const ParticleStore& p, std::uint64_t key) {
+std::string encode_packing(const ParticleStore& p, std::uint64_t key) {
     std::string b;
     b.append(kMagic, sizeof kMagic);
     put(b, kVersion);
@@ -66,9 +67,17 @@ void save_packing(const std::string& path, const ParticleStore& p, std::uint64_t
     Fnv1a h;
     h.add_bytes(b.data(), b.size());
     put(b, h.value());
+    return b;
+}
+
+void save_packing(const std::string& path, std::string_view bytes) {
     const auto dir = std::filesystem::path(path).parent_path();
     if (!dir.empty()) make_dirs(dir.string());
-    write_file_atomic(path, b);
+    write_file_atomic(path, bytes);
+}
+
+void save_packing(const std::string& path, const ParticleStore& p, std::uint64_t key) {
+    save_packing(path, encode_packing(p, key));
 }
 
 std::optional<ParticleStore> load_packing(const std::string& path, std::uint64_t key, double density,
@@ -78,12 +87,23 @@ std::optional<ParticleStore> load_packing(const std::string& path, std::uint64_t
         return std::nullopt;
     };
     if (!std::filesystem::exists(path)) return reason("no cached packing");
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return reason("not a regular file");
     std::string b;
     try {
         b = read_file(path);
     } catch (const std::exception& e) {
         return reason(e.what());
     }
+    return decode_packing(b, key, density, why);
+}
+
+std::optional<ParticleStore> decode_packing(const std::string& b, std::uint64_t key, double density,
+                                            std::string* why) {
+    auto reason = [&](const std::string& r) -> std::optional<ParticleStore> {
+        if (why) *why = r;
+        return std::nullopt;
+    };
     if (b.size() < sizeof kMagic + 4 + 8 + 8 + 8 || std::memcmp(b.data(), kMagic, sizeof kMagic) != 0)
         return reason("not a packing file");
     Fnv1a h;
@@ -99,11 +119,21 @@ std::optional<ParticleStore> load_packing(const std::string& path, std::uint64_t
     if (file_key != key) return reason("made from other parameters");
     const std::size_t rec = 3 * 8 + 4 + 8;
     if (b.size() != at + n * rec + 8) return reason("truncated");
+    // A checksum guards against damage, not against a file made to pass it:
+    // every value is checked before it is used (a bad one is a corrupt cache,
+    // settled again, never a crash).
+    constexpr double kMaxCoordinate = 1e9, kMaxRadius = 1e6;  // [m]
     ParticleStore p;
     for (std::uint64_t k = 0; k < n; ++k) {
         double x = 0, y = 0, r = 0, depth = 0;
         std::int32_t cl = 0;
         get(b, at, x); get(b, at, y); get(b, at, r); get(b, at, cl); get(b, at, depth);
+        if (!(std::fabs(x) <= kMaxCoordinate && std::fabs(y) <= kMaxCoordinate))
+            return reason(fmt::format("disc {} at ({}, {}) m: not a position", k, x, y));
+        if (!(r > 0.0 && r <= kMaxRadius)) return reason(fmt::format("disc {} has radius {} m", k, r));
+        if (cl < -1 || (cl >= 0 && static_cast<std::uint64_t>(cl) >= n))  // -1: a free disc; else at most n clusters
+            return reason(fmt::format("disc {} has cluster id {}", k, cl));
+        if (!std::isfinite(depth)) return reason(fmt::format("disc {} has initial depth {}", k, depth));
         const std::size_t s = p.add({x, y}, r, density, cl);
         p.initial_depth[s] = depth;
     }

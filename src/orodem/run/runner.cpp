@@ -99,14 +99,25 @@ ParticleStore prepare_layer(const Config& c, const std::string& dir, RunLog& log
                          static_cast<double>(done.step) * static_cast<double>(sim.particles.size()) / secs,
                          done.ke_ratio, sim.max_overlap_ratio()));
     cut_layer(sim.particles, c.packing.h0);
-    save_packing(cache, sim.particles, packing_key(c));
-    log.line(fmt::format("cut to h0 = {:g} m: {} discs; cached in {}", c.packing.h0, sim.particles.size(), cache));
+    const std::string bytes = encode_packing(sim.particles, packing_key(c));
+    try {
+        save_packing(cache, bytes);
+        log.line(fmt::format("cut to h0 = {:g} m: {} discs; cached in {}", c.packing.h0, sim.particles.size(), cache));
+    } catch (const IoError& e) {
+        // A read-only or full cache folder (common on clusters) costs the next
+        // run a settling, not this run.
+        const std::string msg = fmt::format("the settled packing was not cached ({}); set packing.cache_dir to a "
+                                            "writable folder to reuse it; this run continues with it in memory",
+                                            e.what());
+        log.line(fmt::format("cut to h0 = {:g} m: {} discs; {}", c.packing.h0, sim.particles.size(), msg));
+        obs.warning(msg, false);
+    }
     // The layer as the cache gives it back (what it keeps of each disc and
     // nothing else: the settling's rotation angles are not kept), so that a
     // run from a fresh layer and one from the cache are the same run, their
     // checkpoints included.
-    if (auto reread = load_packing(cache, packing_key(c), c.material.density, &why)) return std::move(*reread);
-    throw IoError(fmt::format("the packing cache {} just written cannot be read back: {}", cache, why));
+    if (auto layer = decode_packing(bytes, packing_key(c), c.material.density, &why)) return std::move(*layer);
+    throw IoError(fmt::format("the settled packing cannot be read back: {}", why));
 }
 
 /// A WedgeRun, and when an I/O error (a full disk, a failed write) stops it,

@@ -119,10 +119,15 @@ TEST_F(Figures, RenderStacksSnapshotsIntoOneFigure) {
                           ">x / h0 (S point at 0)</text>", ">exp1</text>", "h0)</text>"})
         EXPECT_HAS(svg, s);
     // PDF.
-    r = orodem("render r --at 1,2,3 --out fig.pdf");
+    r = orodem("render r --at 0.5,0.6 --out fig.pdf");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(slurp(work_ / "fig.pdf").substr(0, 5), "%PDF-");
-    EXPECT_HAS(r.out, "1 panels (S = 0.50)");  // all three nearest the last snapshot
+    EXPECT_HAS(r.out, "1 panels (S = 0.50)");  // both nearest the last snapshot
+    // Beyond the run (its last output S = 0.5): refused with the range, nothing written.
+    r = orodem("render r --at 1,2,3 --out beyond.pdf");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_HAS(r.err, "outputs are at S = 0.00 to 0.50");
+    EXPECT_FALSE(fs::exists(work_ / "beyond.pdf"));
     // No --at: four evenly spread up to the last (here the nearest of 0.125,
     // 0.25, 0.375, 0.5: three distinct snapshots).
     r = orodem("render r --out four.png");

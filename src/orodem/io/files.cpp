@@ -102,6 +102,11 @@ void LineFile::line(std::string_view text) {
         throw_io_error("cannot write", path_);
 }
 
+void LineFile::sync() {
+    if (!f_) return;
+    if (std::fflush(f_) != 0 || ::fsync(::fileno(f_)) != 0) throw_io_error("cannot flush to disk", path_);
+}
+
 std::uint64_t file_bytes(const std::string& path) {
     std::error_code ec;
     const auto n = std::filesystem::file_size(path, ec);

@@ -39,6 +39,9 @@ public:
     LineFile& operator=(LineFile&& o) noexcept;
     ~LineFile();
     void line(std::string_view text);
+    /// Makes every line written so far durable (fsync): a checkpoint is
+    /// written only after the files it expects are on disk.
+    void sync();
     bool is_open() const { return f_ != nullptr; }
 
 private:

@@ -58,6 +58,11 @@ public:
     /// A log.txt line (e.text) and its events.csv row.
     void event(const EventRecord& e);
     const std::string& dir() const { return dir_; }
+    /// log.txt and events.csv made durable (LineFile::sync).
+    void sync() {
+        log_.sync();
+        events_.sync();
+    }
 
 private:
     std::string dir_;

@@ -425,6 +425,11 @@ std::string WedgeRun::state_bytes() {
 }
 
 std::string WedgeRun::save_checkpoint(const std::string& bytes) {
+    // The appended files first: after a power loss the newest checkpoint
+    // never expects rows that did not reach the disk.
+    series_.sync();
+    faults_file_.sync();
+    log_.sync();
     const std::string path = write_checkpoint(dir_ + "/checkpoint", sim_.step_count, bytes);
     last_checkpoint_time_ = std::chrono::steady_clock::now();
     return path;

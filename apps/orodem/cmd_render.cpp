@@ -92,7 +92,7 @@ int cmd_render(const RenderArgs& a) {
         targets.push_back(fmt::format("{}/horizons_{}.{}", dir, name, a.format));
         if (k == 0) continue;
         targets.push_back(fmt::format("{}/displacement_{}.{}", dir, name, a.format));
-        strain[k] = has_colour_data(run, k, "strain");
+        strain[k] = has_colour_data(run, k, ColorBy::strain);
         if (strain[k]) targets.push_back(fmt::format("{}/strain_{}.{}", dir, name, a.format));
         strain_maps += strain[k] ? 1 : 0;
     }
@@ -104,7 +104,7 @@ int cmd_render(const RenderArgs& a) {
         const Frame f = read_frame(run, k);
         ViewOptions view = run_view(run.config, a.width);
         view.per_frame_scale = f.per_frame_scale;
-        Panel panel = strain[k] ? frame_panel(f, "strain", &faults[k]) : frame_panel(f, "horizons", nullptr);
+        Panel panel = strain[k] ? frame_panel(f, ColorBy::strain, &faults[k]) : frame_panel(f, ColorBy::horizons, nullptr);
         pictures += render_output_pictures(panel, view, dir, fs::path(run.snaps[k].file).stem().string(), a.format).size();
     }
     const std::size_t later = chosen.size() - (chosen.front() == 0 ? 1 : 0);  // snapshots with an interval

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "orodem/render/particle_view.hpp"
 #include "orodem/run/slurm.hpp"
 
 namespace orodem {
@@ -61,7 +62,7 @@ struct RenderArgs {
     std::string out;                    // one stacked figure (.png, .svg, .pdf); empty: a picture pair per snapshot
     std::string dir;                    // the picture pairs' folder; empty: RUN_DIR/figures/rendered
     std::string format = "png";         // the picture pairs' format
-    std::string color_by = "horizons";  // the stacked figure's colouring: horizons | displacement | strain | strain_total
+    orodem::ColorBy color_by = orodem::ColorBy::horizons;  // the stacked figure's colouring: horizons | displacement | strain | strain_total
     int width = 1600;                   // picture width [px]
     bool force = false;                 // replace existing files
 };
@@ -75,7 +76,7 @@ int cmd_render(const RenderArgs& a);
 struct MovieArgs {
     std::string run_dir;
     std::string out;                    // .mp4 or .gif
-    std::string color_by = "horizons";  // horizons | displacement | strain | strain_total
+    orodem::ColorBy color_by = orodem::ColorBy::horizons;  // horizons | displacement | strain | strain_total
     int width = 1600;                   // frame width [px]
     double fps = 4.0;                   // snapshots per second [1/s]
     bool force = false;                 // replace an existing file

@@ -19,6 +19,16 @@ using namespace orodem;
 namespace {
 
 /// --scheduler and the Slurm options of sweep and resume; `cpus` describes --cpus-per-task.
+/// A --color-by option: one of kColorBys's names, parsed once into `out`.
+CLI::Option* add_color_by(CLI::App* cmd, orodem::ColorBy& out, const std::string& help) {
+    std::vector<std::string> names;
+    for (const auto& n : orodem::kColorBys) names.emplace_back(n.name);
+    return cmd->add_option_function<std::string>(
+                  "--color-by", [&out](const std::string& v) { orodem::value_in(orodem::kColorBys, v, out); }, help)
+        ->check(CLI::IsMember(names))
+        ->default_str(orodem::name_of(out));
+}
+
 void add_scheduler_options(CLI::App* cmd, SchedulerArgs& s, const std::string& cpus) {
     cmd->add_option("--scheduler", s.scheduler, "Where a sweep's runs go: local (this machine) or slurm (one Slurm "
                                                 "job array, scripts in DIR/slurm/)")
@@ -149,11 +159,9 @@ int main(int argc, char** argv) {
                                       "--out four evenly spread up to the last, else all)")
         ->delimiter(',');
     auto* render_out = render->add_option("--out", ra.out, "One stacked figure, .png, .svg (text as <text>) or .pdf");
-    render->add_option("--color-by", ra.color_by, "The stacked figure's colouring (strain: γ of the output "
-                                                   "interval, strain_total: since S = 0; both with the active faults)")
-        ->check(CLI::IsMember({"horizons", "displacement", "strain", "strain_total"}))
-        ->needs(render_out)
-        ->capture_default_str();
+    add_color_by(render, ra.color_by, "The stacked figure's colouring (strain: γ of the output interval, "
+                                      "strain_total: since S = 0; both with the active faults)")
+        ->needs(render_out);
     render->add_option("--dir", ra.dir, "Folder of the per-snapshot pictures (default RUN_DIR/figures/rendered)")
         ->excludes(render_out);
     render->add_option("--format", ra.format, "Format of the per-snapshot pictures")
@@ -170,9 +178,7 @@ int main(int argc, char** argv) {
                                               "frame and colour scales (needs ffmpeg: exit status 6 without it)");
     movie->add_option("run_dir", ma.run_dir, "Run directory")->required();
     movie->add_option("--out", ma.out, "Output file, .mp4 or .gif")->required();
-    movie->add_option("--color-by", ma.color_by, "Colouring")
-        ->check(CLI::IsMember({"horizons", "displacement", "strain", "strain_total"}))
-        ->capture_default_str();
+    add_color_by(movie, ma.color_by, "Colouring");
     movie->add_option("--fps", ma.fps, "Frames (snapshots) per second")->check(CLI::Range(0.1, 60.0))->capture_default_str();
     movie->add_option("--width", ma.width, "Frame width in pixels")->check(CLI::Range(200, 8000))->capture_default_str();
     movie->add_flag("--force", ma.force, "Replace the file if it exists already");

@@ -268,7 +268,7 @@ TEST_F(Figures, StrainMapsCarryTheFaultsOfTheTableOnOneScale) {
         ASSERT_EQ(f.strain_total.size(), f.p.size());
         const fs::path dir = work_ / ("strain" + std::to_string(k));
         fs::create_directories(dir);
-        const auto infos = orodem::render_output_pictures(orodem::frame_panel(f, "strain", &lines[k]),
+        const auto infos = orodem::render_output_pictures(orodem::frame_panel(f, orodem::ColorBy::strain, &lines[k]),
                                                           orodem::run_view(saved.config), dir.string(), "x");
         ASSERT_EQ(infos.size(), 3u);
         EXPECT_EQ(infos[2].faults_drawn, lines[k]);

@@ -183,10 +183,10 @@ TEST(Render, SvgAndPdfAreWritten) {
     std::vector<double> disp(p.size());
     for (std::size_t s = 0; s < p.size(); ++s) disp[s] = static_cast<double>(s) / 19.0;
     for (const char* ext : {"svg", "pdf"}) {
-        for (const char* color_by : {"horizons", "displacement"}) {
+        for (const ColorBy color_by : {ColorBy::horizons, ColorBy::displacement}) {
             ViewOptions o = view(800);
             o.color_by = color_by;
-            const fs::path f = dir / (std::string(color_by) + "." + ext);
+            const fs::path f = dir / (std::string(name_of(color_by)) + "." + ext);
             draw(p, &disp, o, f.string());
             ASSERT_TRUE(fs::exists(f)) << f;
             EXPECT_GT(fs::file_size(f), 100u) << f;
@@ -268,7 +268,7 @@ TEST(Render, DisplacementColoursFollowTheFixedScale) {
         scalar.push_back(v);
     }
     ViewOptions o = view(1690);
-    o.color_by = "displacement";
+    o.color_by = ColorBy::displacement;
     const std::string png = (dir / "d.png").string();
     const PictureInfo info = draw(p, &scalar, o, png);
     Image img(png);
@@ -309,7 +309,7 @@ TEST(Render, OldSnapshotsAreScaledToTheirQuantileAndSaySo) {
         scalar.push_back(0.1);
     }
     ViewOptions o = view(1690);
-    o.color_by = "displacement";
+    o.color_by = ColorBy::displacement;
     o.per_frame_scale = true;
     const std::string png = (dir / "d.png").string();
     const PictureInfo info = draw(p, &scalar, o, png);
@@ -391,7 +391,7 @@ TEST(Render, StrainColoursFollowTheFixedLogScale) {
         gamma.push_back(g);
     }
     ViewOptions o = view(1690);
-    o.color_by = "strain";
+    o.color_by = ColorBy::strain;
     o.output_ds = 0.25;
     const std::string png = (dir / "s.png").string();
     const PictureInfo info = render_panels({{&p, nullptr, 0.25, &gamma, nullptr}}, o, png);
@@ -416,13 +416,13 @@ TEST(Render, StrainColoursFollowTheFixedLogScale) {
     EXPECT_NE(info.legend.title.find("ΔS = 0.25"), std::string::npos) << info.legend.title;
     EXPECT_EQ(info.legend.line_keys, (std::vector<std::string>{"pro-vergent fault", "retro-vergent fault"}));
     // The finite strain: its own fixed bar, 1e-2..10.
-    o.color_by = "strain_total";
+    o.color_by = ColorBy::strain_total;
     const Legend total = picture_legend(o);
     EXPECT_EQ(total.lo, kStrainTotalLo);
     EXPECT_EQ(total.hi, kStrainTotalHi);
     EXPECT_NE(total.title.find("since S = 0"), std::string::npos) << total.title;
     // SVG: the bar's labels are text.
-    o.color_by = "strain";
+    o.color_by = ColorBy::strain;
     render_panels({{&p, nullptr, 0.25, &gamma, nullptr}}, o, (dir / "s.svg").string());
     const std::string svg = slurp_text(dir / "s.svg");
     for (const char* s : {">≤ 0.001</text>", ">0.01</text>", ">≥ 1</text>", ">pro-vergent fault</text>"})
@@ -453,7 +453,7 @@ TEST(Render, FaultLinesAreDrawnFromRootToTipInTheirVergenceStyle) {
     ParticleStore p;
     p.add({0.0, 0.3}, 0.3, 2500.0);
     ViewOptions o = view(1600);
-    o.color_by = "strain";
+    o.color_by = ColorBy::strain;
     const std::string png = (dir / "f.png").string();
     const PictureInfo info = render_panels({{&p, nullptr, 1.0, nullptr, &lines}}, o, png);
     EXPECT_EQ(info.faults_drawn, lines);
@@ -481,7 +481,7 @@ TEST(Render, FaultLinesAreDrawnFromRootToTipInTheirVergenceStyle) {
         gaps += white(img.at_point(o, {x, lines[1].root.y})) ? 1 : 0;
     EXPECT_GT(gaps, 20);
     // Horizons and displacement pictures draw no fault lines.
-    o.color_by = "horizons";
+    o.color_by = ColorBy::horizons;
     EXPECT_TRUE(render_panels({{&p, nullptr, 1.0, nullptr, &lines}}, o, png).faults_drawn.empty());
     fs::remove_all(dir);
 }

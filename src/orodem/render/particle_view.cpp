@@ -138,7 +138,7 @@ void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layou
     const double x0 = L.left;
     auto px = [&](double x) { return x0 + (x - o.x_min) * L.scale; };
     auto py = [&](double y) { return top + (o.y_max - y) * L.scale; };
-    const bool by_disp = o.color_by == "displacement", by_strain = is_strain(o.color_by);
+    const bool by_disp = o.color_by == ColorBy::displacement, by_strain = is_strain(o.color_by);
     const ParticleStore& p = *panel.p;
     c.clip(x0, top, L.plot_w, L.plot_h);
     bool cut_above = false;  // material reaching over the frame's top edge
@@ -196,7 +196,6 @@ void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layou
 
 }  // namespace
 
-bool is_strain(const std::string& color_by) { return color_by == "strain" || color_by == "strain_total"; }
 
 std::vector<FaultLine> active_fault_lines(const std::vector<Fault>& faults, double unit) {
     std::vector<FaultLine> out;
@@ -226,7 +225,7 @@ ViewOptions run_view(const ConfigBasics& b, int width_px) {
 
 Legend picture_legend(const ViewOptions& o) {
     Legend g;
-    if (o.color_by == "displacement") {
+    if (o.color_by == ColorBy::displacement) {
         if (o.per_frame_scale) {
             g.title = fmt::format("relative displacement / its {:g}th percentile in this frame (old snapshot)",
                                   100.0 * o.displacement_quantile);
@@ -242,7 +241,7 @@ Legend picture_legend(const ViewOptions& o) {
         return g;
     }
     if (is_strain(o.color_by)) {
-        const bool total = o.color_by == "strain_total";
+        const bool total = o.color_by == ColorBy::strain_total;
         g.title = total ? std::string("finite max shear strain γ since S = 0 [-], log scale")
                   : o.output_ds > 0.0
                       ? fmt::format("max shear strain γ over the output interval ΔS = {:g} [-], log scale", o.output_ds)
@@ -280,7 +279,7 @@ PictureInfo render_panels(const std::vector<Panel>& panels, const ViewOptions& o
     draw_legend(*c, legend, L.width - L.right, L);
     for (std::size_t k = 0; k < panels.size(); ++k) {
         double full = 1.0;  // displacement: the value drawn at the top of the bar
-        if (o.color_by == "displacement" && panels[k].displacement)
+        if (o.color_by == ColorBy::displacement && panels[k].displacement)
             full = o.per_frame_scale ? positive_quantile(*panels[k].displacement, o.displacement_quantile)
                                      : kDisplacementFull;
         draw_panel(*c, panels[k], o, L, L.head + static_cast<double>(k) * (L.plot_h + L.gap), k + 1 == panels.size(),
@@ -309,15 +308,15 @@ double positive_quantile(const std::vector<double>& v, double q) {
 std::vector<PictureInfo> render_output_pictures(const Panel& panel, ViewOptions view, const std::string& dir,
                                                 const std::string& name, const std::string& ext) {
     std::vector<PictureInfo> out;
-    view.color_by = "horizons";
+    view.color_by = ColorBy::horizons;
     out.push_back(render_panels({{panel.p, nullptr, panel.S}}, view, fmt::format("{}/horizons_{}.{}", dir, name, ext)));
     if (panel.displacement) {
-        view.color_by = "displacement";
+        view.color_by = ColorBy::displacement;
         out.push_back(render_panels({{panel.p, panel.displacement, panel.S}}, view,
                                     fmt::format("{}/displacement_{}.{}", dir, name, ext)));
     }
     if (panel.strain) {
-        view.color_by = "strain";
+        view.color_by = ColorBy::strain;
         view.per_frame_scale = false;
         out.push_back(render_panels({{panel.p, nullptr, panel.S, panel.strain, panel.faults}}, view,
                                     fmt::format("{}/strain_{}.{}", dir, name, ext)));

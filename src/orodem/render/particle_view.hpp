@@ -38,6 +38,8 @@
 // 1600 px picture: 2.7 mm when printed 16 cm wide).
 #pragma once
 
+#include "orodem/core/named.hpp"
+
 #include <string>
 #include <vector>
 
@@ -47,6 +49,15 @@
 #include "orodem/state/particles.hpp"
 
 namespace orodem {
+
+/// What a picture's discs are coloured by (orodem render and movie --color-by): the initial-depth horizons, the
+/// relative displacement since the previous output, the shear strain of the output interval, or since S = 0.
+enum class ColorBy { horizons, displacement, strain, strain_total };
+inline constexpr Named<ColorBy> kColorBys[] = {{ColorBy::horizons, "horizons"},
+                                               {ColorBy::displacement, "displacement"},
+                                               {ColorBy::strain, "strain"},
+                                               {ColorBy::strain_total, "strain_total"}};
+constexpr const char* name_of(ColorBy v) { return name_in(kColorBys, v); }
 
 /// Top of the displacement colour bar: relative displacement / (ΔS h0) [-].
 inline constexpr double kDisplacementFull = 0.3;
@@ -74,7 +85,7 @@ struct ViewOptions {
     double x_s = 0;                // S point [m]
     int width_px = 1600;           // picture width; the height follows from the frame's aspect ratio
     double band = 1;               // horizon band thickness [m]
-    std::string color_by = "horizons";  // horizons | displacement | strain | strain_total
+    ColorBy color_by = ColorBy::horizons;  // horizons | displacement | strain | strain_total
     double output_ds = 0;          // the run's ΔS between outputs (named in the strain legend; 0: not named)
     std::string title;             // header text, e.g. "exp1"
     bool per_frame_scale = false;  // displacement values are normalised per frame (old snapshots)
@@ -106,7 +117,7 @@ struct Legend {
 Legend picture_legend(const ViewOptions& o);
 
 /// Whether color_by is one of the strain maps (strain, strain_total).
-bool is_strain(const std::string& color_by);
+constexpr bool is_strain(ColorBy c) { return c == ColorBy::strain || c == ColorBy::strain_total; }
 
 /// The colour of value v on g's colour bar: linear or logarithmic between
 /// lo and hi; v below lo (on a log bar also v ≤ 0) or NaN takes the bottom

@@ -71,18 +71,18 @@ std::vector<std::size_t> nearest_snapshots(const std::vector<Snapshot>& snaps, c
 
 namespace {
 
-[[noreturn]] void no_strain_error(const std::string& file, const std::string& color_by) {
+[[noreturn]] void no_strain_error(const std::string& file, ColorBy color_by) {
     throw ConfigError(fmt::format("'{}' holds no {} array (written by an orodem before strain maps): draw this run "
                                   "with --color-by horizons or displacement",
-                                  file, color_by == "strain_total" ? "shear_strain_total" : "shear_strain"));
+                                  file, color_by == ColorBy::strain_total ? "shear_strain_total" : "shear_strain"));
 }
 
 }  // namespace
 
-Panel frame_panel(const Frame& f, const std::string& color_by, const std::vector<FaultLine>* faults) {
+Panel frame_panel(const Frame& f, ColorBy color_by, const std::vector<FaultLine>* faults) {
     Panel panel{&f.p, f.displacement.empty() ? nullptr : &f.displacement, f.S};
     if (!is_strain(color_by)) return panel;
-    const bool total = color_by == "strain_total";
+    const bool total = color_by == ColorBy::strain_total;
     const std::vector<double>& g = total ? f.strain_total : f.strain;
     if (g.size() != f.p.size()) no_strain_error(f.file, color_by);
     panel.strain = &g;
@@ -90,17 +90,17 @@ Panel frame_panel(const Frame& f, const std::string& color_by, const std::vector
     return panel;
 }
 
-bool has_colour_data(const SavedRun& run, std::size_t k, const std::string& color_by) {
+bool has_colour_data(const SavedRun& run, std::size_t k, ColorBy color_by) {
     if (!is_strain(color_by)) return true;
     const Frame f = read_frame(run, k);
-    return (color_by == "strain_total" ? f.strain_total : f.strain).size() == f.p.size();
+    return (color_by == ColorBy::strain_total ? f.strain_total : f.strain).size() == f.p.size();
 }
 
-void require_colour_data(const SavedRun& run, std::size_t k, const std::string& color_by) {
+void require_colour_data(const SavedRun& run, std::size_t k, ColorBy color_by) {
     if (!has_colour_data(run, k, color_by)) no_strain_error((fs::path(run.dir) / run.snaps[k].file).string(), color_by);
 }
 
-PictureInfo render_run_figure(const SavedRun& run, const std::vector<std::size_t>& chosen, const std::string& color_by,
+PictureInfo render_run_figure(const SavedRun& run, const std::vector<std::size_t>& chosen, ColorBy color_by,
                               int width_px, const std::string& out, const RunFaultLines* faults) {
     std::vector<Frame> frames;
     for (std::size_t k : chosen) frames.push_back(read_frame(run, k));

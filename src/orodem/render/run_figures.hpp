@@ -59,21 +59,21 @@ using RunFaultLines = std::vector<std::vector<FaultLine>>;
 /// The panel of frame f coloured by color_by, with its fault lines (may be
 /// null); ConfigError naming the snapshot when a strain colouring finds no
 /// strain array in it.
-Panel frame_panel(const Frame& f, const std::string& color_by, const std::vector<FaultLine>* faults);
+Panel frame_panel(const Frame& f, ColorBy color_by, const std::vector<FaultLine>* faults);
 
 /// Whether snapshot k holds the arrays that color_by needs (always true but
 /// for strain and strain_total).
-bool has_colour_data(const SavedRun& run, std::size_t k, const std::string& color_by);
+bool has_colour_data(const SavedRun& run, std::size_t k, ColorBy color_by);
 /// The same, as a ConfigError naming the snapshot when it does not.
-void require_colour_data(const SavedRun& run, std::size_t k, const std::string& color_by);
+void require_colour_data(const SavedRun& run, std::size_t k, ColorBy color_by);
 
 /// The stacked figure (render_panels) of the chosen snapshots into out;
 /// faults (may be null) gives the strain maps' fault lines.
-PictureInfo render_run_figure(const SavedRun& run, const std::vector<std::size_t>& chosen, const std::string& color_by,
+PictureInfo render_run_figure(const SavedRun& run, const std::vector<std::size_t>& chosen, ColorBy color_by,
                               int width_px, const std::string& out, const RunFaultLines* faults = nullptr);
 
 struct MovieOptions {
-    std::string color_by = "horizons";  // horizons | displacement | strain | strain_total
+    ColorBy color_by = ColorBy::horizons;  // horizons | displacement | strain | strain_total
     int width_px = 1600;                // frame width [px] (ffmpeg pads to even sizes)
     double fps = 4.0;                   // frames (snapshots) per second [1/s]
     RunFaultLines faults;               // strain maps: per snapshot; empty: no lines

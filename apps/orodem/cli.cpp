@@ -15,7 +15,7 @@ namespace orodem {
 
 namespace {
 
-volatile std::sig_atomic_t g_stop_signal = 0;   // the first SIGINT/SIGTERM, 0 while none came
+volatile std::sig_atomic_t g_stop_signal = 0;   // the first SIGINT/SIGTERM/SIGHUP, 0 while none came
 volatile std::sig_atomic_t g_signal_count = 0;  // how many came
 
 // The first signal asks for a stop with a checkpoint; a second one (an
@@ -42,11 +42,13 @@ StopSignals::StopSignals() {
     sa.sa_flags = SA_RESTART;
     ::sigaction(SIGINT, &sa, &old_int_);
     ::sigaction(SIGTERM, &sa, &old_term_);
+    ::sigaction(SIGHUP, &sa, &old_hup_);  // the terminal or the SSH session closed: a stop with a checkpoint, as SIGTERM
 }
 
 StopSignals::~StopSignals() {
     ::sigaction(SIGINT, &old_int_, nullptr);
     ::sigaction(SIGTERM, &old_term_, nullptr);
+    ::sigaction(SIGHUP, &old_hup_, nullptr);
 }
 
 int StopSignals::pending() const { return static_cast<int>(g_stop_signal); }

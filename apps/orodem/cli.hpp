@@ -45,7 +45,7 @@ public:
     int pending() const;
 
 private:
-    struct sigaction old_int_ {}, old_term_ {};
+    struct sigaction old_int_ {}, old_term_ {}, old_hup_ {};
 };
 
 /// A run on the terminal: on a terminal one progress line rewritten at most

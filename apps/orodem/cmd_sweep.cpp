@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "orodem/core/error.hpp"
 #include "orodem/io/config.hpp"
+#include "orodem/io/files.hpp"
 #include "orodem/io/sweep_manifest.hpp"
 #include "orodem/run/runner.hpp"
 #include "orodem/run/sweep.hpp"
@@ -58,6 +59,7 @@ int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& o
     const std::string root = new_sweep_dir(out_arg, a.config);
     if (slurm) require_slurm_command("sbatch");  // without sbatch nothing is written
     const Sweep sweep = create_sweep(root, SweepManifest{a.config, key, values, a.sets}, configs);
+    const DirLock lock = lock_dir(root, "the sweep folder");  // one sweep process per folder, to the end
     TerminalSweep terminal;
     if (slurm) return submit_sweep_slurm(sweep, s.slurm, true, terminal);
     return run_sweep(sweep, LocalJobs{a.threads, jobs, ""}, terminal);
@@ -67,6 +69,7 @@ int cmd_resume(const std::string& dir, int threads, int jobs, const SchedulerArg
     const bool slurm = s.scheduler == "slurm";
     check_sweep_scheduler(slurm, s.slurm_given, threads, jobs);
     if (std::filesystem::exists(sweep_manifest_path(dir))) {
+        const DirLock lock = lock_dir(dir, "the sweep folder");  // one sweep process per folder, to the end
         const Sweep sweep = open_sweep(dir);
         fmt::print("continuing the sweep in {} ({} = {} values)\n", dir, sweep.manifest.key, sweep.size());
         TerminalSweep terminal;

@@ -611,3 +611,36 @@ TEST_F(Resume, StatusSaysHowFarARunGotHowItEndedAndHowToContinueIt) {
     EXPECT_EQ(run(std::string(ORODEM_EXE) + " status " + quote((root_ / "nowhere").string()), &out), 2) << out;
     EXPECT_NE(out.find("no such run directory"), std::string::npos) << out;
 }
+
+TEST_F(Resume, SighupStopsWithACheckpointAndResumesByteIdentical) {
+    // A closed terminal or SSH session (SIGHUP) is a stop with a checkpoint, as SIGTERM (exit 128 + 1).
+    const fs::path run = root_ / "H";
+    const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1"}, root_ / "H");
+    ASSERT_TRUE(signal_after_checkpoint(p, run, {SIGHUP})) << slurp(p.err);
+    ASSERT_EQ(wait_for(p), 129) << slurp(p.err);
+    EXPECT_NE(slurp(p.err).find("interrupted by SIGHUP"), std::string::npos) << slurp(p.err);
+    const Proc r = start({"resume", run.string(), "--threads", "1"}, root_ / "H-resume");
+    ASSERT_EQ(wait_for(r), 0) << slurp(r.err);
+    expect_same_outputs(reference_, run);
+}
+
+TEST_F(Resume, TwoWritersOnOneRunDirectoryGiveOneExitTwoAndTheSameOutputs) {
+    // run + resume, run + run --resume, resume + resume: the second is refused at once with the holder's pid
+    // (exit 2, nothing changed), and the run ends byte-identical to an uninterrupted one.
+    const fs::path run = root_ / "W";
+    const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1", "--set",
+                          "run.checkpoint_every_outputs=1"}, root_ / "W");
+    ASSERT_TRUE(signal_after_checkpoint(p, run, {})) << slurp(p.err);  // running, with a checkpoint to resume from
+    for (const std::vector<std::string>& second :
+         {std::vector<std::string>{"resume", run.string()},
+          std::vector<std::string>{"run", run.string() + "/config.toml", "--out", run.string(), "--resume"}}) {
+        const Proc q = start(second, root_ / "W-second");
+        const int rc = wait_for(q);
+        if (rc == 0) GTEST_SKIP() << "the first run ended before the second started (machine too fast for this test)";
+        EXPECT_EQ(rc, 2) << slurp(q.err);
+        EXPECT_NE(slurp(q.err).find("is in use by another orodem (pid " + std::to_string(p.pid) + ")"),
+                  std::string::npos) << slurp(q.err);
+    }
+    ASSERT_EQ(wait_for(p), 0) << slurp(p.err);
+    expect_same_outputs(reference_, run);
+}

@@ -202,3 +202,37 @@ TEST(Sweep, WithTwoJobsTheRunsAreThoseOfASequentialSweepAlsoWhenInterrupted) {
     EXPECT_TRUE(fs::exists(dir / "sw" / "plots.png"));
     fs::remove_all(dir);
 }
+
+TEST(Sweep, KilledOrHungUpItsMembersEndWithItAndResumeFinishesTheSame) {
+    // SIGKILL (or SIGHUP: the terminal closed) to a --jobs 2 sweep: its members get SIGTERM from the kernel
+    // (die_with_parent), checkpoint and stop, so none is left running; a second sweep process on the folder is
+    // refused while one runs; `orodem resume` then ends every member byte-identical to the sequential sweep's.
+    const fs::path dir = tiny_dir();
+    ASSERT_FALSE(dir.empty());
+    const std::string tiny = (dir / "tiny.toml").string();
+    std::string out;
+    ASSERT_EQ(reference_sweep(dir, &out), 0) << out;
+    for (const int sig : {SIGKILL, SIGHUP}) {
+        const std::string name = sig == SIGKILL ? "sk" : "sh", sw = (dir / name).string();
+        const Proc p = start({"sweep", tiny, "--vary", "wedge.mu_bp=0.1,0.5", "--out", sw, "--jobs", "2", "--threads",
+                              "1", "--set", "wedge.output_ds=0.125"},
+                             dir / name);
+        ASSERT_TRUE(signal_after_checkpoint(p, dir / name / "wedge.mu_bp=0.1", {})) << slurp(p.err);
+        if (sig == SIGKILL) {  // while it runs, a resume of the folder is refused
+            EXPECT_EQ(run(std::string(ORODEM_EXE) + " resume " + sw + " 2>&1", &out), 2) << out;
+            EXPECT_HAS(out, "the sweep folder '" + sw + "' is in use by another orodem (pid " + std::to_string(p.pid));
+        }
+        ::kill(p.pid, sig);
+        wait_for(p);
+        // The members are gone within seconds (their shutdown checkpoint written).
+        bool alive = true;
+        for (int k = 0; k < 200 && alive; ++k) {
+            alive = run("pgrep -f '[s]weep-member " + sw + "/' >/dev/null") == 0;  // [s]: not pgrep's own shell
+            if (alive) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        }
+        EXPECT_FALSE(alive) << "a member of the " << name << " sweep outlived it";
+        ASSERT_EQ(run(std::string(ORODEM_EXE) + " resume " + sw + " --jobs 2 --threads 1", &out), 0) << out;
+        for (const char* m : {"wedge.mu_bp=0.1", "wedge.mu_bp=0.5"}) expect_same_outputs(dir / "ref" / m, dir / name / m);
+    }
+    fs::remove_all(dir);
+}

@@ -1,13 +1,19 @@
 #include "orodem/io/files.hpp"
 
 #include <atomic>
+#include <chrono>
+#include <cstdlib>
 #include <cerrno>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <system_error>
+#include <thread>
 
 #include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -105,6 +111,80 @@ void LineFile::line(std::string_view text) {
 void LineFile::sync() {
     if (!f_) return;
     if (std::fflush(f_) != 0 || ::fsync(::fileno(f_)) != 0) throw_io_error("cannot flush to disk", path_);
+}
+
+namespace {
+// The directories this process holds (device, inode): a second lock_dir of
+// one of them in the same process (a sweep member's run inside the member's
+// lock) is granted without a second flock, which would conflict with the
+// first.
+std::set<std::pair<dev_t, ino_t>>& held_dirs() {
+    static std::set<std::pair<dev_t, ino_t>> held;
+    return held;
+}
+}  // namespace
+
+DirLock& DirLock::operator=(DirLock&& o) noexcept {
+    if (this != &o) {
+        release();
+        fd_ = o.fd_;
+        id_ = o.id_;
+        o.fd_ = -1;
+    }
+    return *this;
+}
+
+DirLock::~DirLock() { release(); }
+
+void DirLock::release() {
+    if (fd_ < 0) return;
+    held_dirs().erase(id_);
+    ::close(fd_);  // closing the last descriptor drops the flock
+    fd_ = -1;
+}
+
+long lock_holder(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return 0;
+    std::ifstream locks("/proc/locks");
+    std::string line;
+    // "1: FLOCK  ADVISORY  WRITE 1234 08:01:5678 0 EOF": pid, then major:minor:inode
+    while (std::getline(locks, line)) {
+        std::istringstream in(line);
+        std::string n, kind, mode, rw, dev;
+        long pid = 0;
+        if (!(in >> n >> kind >> mode >> rw >> pid >> dev) || kind != "FLOCK") continue;
+        const auto colon = dev.rfind(':');
+        if (colon == std::string::npos) continue;
+        if (std::strtoull(dev.c_str() + colon + 1, nullptr, 10) == static_cast<unsigned long long>(st.st_ino)) return pid;
+    }
+    return 0;
+}
+
+DirLock lock_dir(const std::string& dir, const std::string& what, double wait_s) {
+    DirLock lock;
+    struct stat st {};
+    if (::stat(dir.c_str(), &st) != 0) throw_io_error("cannot open", dir);
+    if (held_dirs().count({st.st_dev, st.st_ino})) return lock;  // held by this process already (an outer lock)
+    lock.fd_ = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (lock.fd_ < 0) throw_io_error("cannot open", dir);
+    lock.id_ = {st.st_dev, st.st_ino};
+    const auto t0 = std::chrono::steady_clock::now();
+    while (::flock(lock.fd_, LOCK_EX | LOCK_NB) != 0) {
+        if (errno == EINTR) continue;
+        if (errno != EWOULDBLOCK) throw_io_error("cannot lock", dir);
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() >= wait_s) {
+            const long pid = lock_holder(dir);
+            throw ConfigError(fmt::format(
+                "{} '{}' is in use by another orodem{}: one process writes it at a time, so nothing was changed; "
+                "wait for it to end, or stop it{}",
+                what, dir, pid > 0 ? fmt::format(" (pid {})", pid) : "",
+                pid > 0 ? fmt::format(" (kill {}: it checkpoints and stops)", pid) : ""));
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    held_dirs().insert(lock.id_);
+    return lock;
 }
 
 std::uint64_t file_bytes(const std::string& path) {

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace orodem {
 
@@ -26,6 +27,35 @@ std::uint64_t file_bytes(const std::string& path);
 void truncate_file(const std::string& path, std::uint64_t bytes);
 /// Removes a file or a directory tree if present; throws IoError on failure.
 void remove_path(const std::string& path);
+
+/// One writer per run directory or sweep folder: an advisory lock (flock) on
+/// the directory itself, held while the object lives (the process's life,
+/// for the commands that take it). The kernel drops it when the process
+/// ends, however it ends, so a dead writer leaves no stale lock; children
+/// started with exec do not inherit it. No file is added to the directory.
+class DirLock {
+public:
+    DirLock() = default;
+    DirLock(const DirLock&) = delete;
+    DirLock& operator=(const DirLock&) = delete;
+    DirLock(DirLock&& o) noexcept : fd_(o.fd_), id_(o.id_) { o.fd_ = -1; }
+    DirLock& operator=(DirLock&& o) noexcept;
+    ~DirLock();
+    bool held() const { return fd_ >= 0; }
+
+private:
+    friend DirLock lock_dir(const std::string& dir, const std::string& what, double wait_s);
+    void release();
+    int fd_ = -1;
+    std::pair<unsigned long, unsigned long> id_{};  // the directory's device and inode
+};
+
+/// Locks `dir` for this process. When another process holds it: waits up to
+/// wait_s seconds for it, then throws ConfigError (exit 2, nothing changed)
+/// naming `what`, the directory and the holder's pid (from /proc/locks).
+DirLock lock_dir(const std::string& dir, const std::string& what, double wait_s = 0.0);
+/// The pid of the process holding a flock on path (/proc/locks), or 0.
+long lock_holder(const std::string& path);
 
 /// An append-only text file (log.txt, series.csv) whose every line is
 /// written and flushed at once, and whose errors throw IoError.

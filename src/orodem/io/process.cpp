@@ -2,12 +2,17 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <csignal>
 #include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
 #include <filesystem>
 
 extern char** environ;
@@ -28,6 +33,13 @@ std::string find_on_path(const std::string& name) {
         start = end + 1;
     }
     return "";
+}
+
+bool die_with_parent() {
+    const char* parent = std::getenv("ORODEM_PARENT_PID");
+    if (!parent || !*parent) return true;
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    return ::getppid() == static_cast<pid_t>(std::strtol(parent, nullptr, 10));  // not reparented already
 }
 
 int spawn_child(const std::vector<std::string>& args, const ChildIo& io, pid_t& pid) {
@@ -54,8 +66,17 @@ int spawn_child(const std::vector<std::string>& args, const ChildIo& io, pid_t& 
         posix_spawnattr_setpgroup(&at, 0);
         posix_spawnattr_setflags(&at, POSIX_SPAWN_SETPGROUP);
     }
+    std::vector<std::string> env_copy;
+    std::vector<char*> envp;
+    if (io.parent_env) {
+        for (char** e = environ; *e; ++e)
+            if (std::strncmp(*e, "ORODEM_PARENT_PID=", 18) != 0) env_copy.emplace_back(*e);
+        env_copy.push_back("ORODEM_PARENT_PID=" + std::to_string(::getpid()));
+        for (auto& e : env_copy) envp.push_back(e.data());
+        envp.push_back(nullptr);
+    }
     pid = -1;
-    const int rc = posix_spawnp(&pid, argv[0], &fa, &at, argv.data(), environ);
+    const int rc = posix_spawnp(&pid, argv[0], &fa, &at, argv.data(), io.parent_env ? envp.data() : environ);
     posix_spawnattr_destroy(&at);
     posix_spawn_file_actions_destroy(&fa);
     return rc;

@@ -23,11 +23,18 @@ struct ChildIo {
     int out_fd = -1;         // or this descriptor (a pipe's write end)
     int close_fd = -1;       // a descriptor the child closes (the pipe's read end)
     bool new_group = false;  // the child leads a process group of its own
+    bool parent_env = false; // the child's environment gets ORODEM_PARENT_PID=<this process> (die_with_parent)
 };
 
 /// Starts args[0] (a path, or a name looked up on PATH) with args; pid set on
 /// success. Returns 0, or the error number of a failed start.
 int spawn_child(const std::vector<std::string>& args, const ChildIo& io, pid_t& pid);
+
+/// In a child started with parent_env: asks the kernel for SIGTERM when the
+/// parent ends (prctl PR_SET_PDEATHSIG), however it ends; false when the
+/// parent has ended already (the child should stop at once). True, doing
+/// nothing, in a process started otherwise.
+bool die_with_parent();
 
 /// Waits for pid (retrying on EINTR): its exit status, -1 when a signal ended it.
 int wait_child(pid_t pid);

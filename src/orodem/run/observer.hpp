@@ -6,10 +6,17 @@
 // made between steps, never inside one.
 #pragma once
 
+#include <csignal>
+
 #include <cstdint>
 #include <string>
 
 namespace orodem {
+
+/// The name of a stop signal (SIGINT, SIGTERM, SIGHUP) for log lines and messages.
+inline const char* stop_signal_name(int sig) {
+    return sig == SIGINT ? "SIGINT" : sig == SIGHUP ? "SIGHUP" : "SIGTERM";
+}
 
 /// A wedge run's progress at a chunk boundary or an output.
 struct RunProgress {

@@ -74,7 +74,7 @@ ParticleStore prepare_layer(const Config& c, const std::string& dir, RunLog& log
             const std::string msg = fmt::format(
                 "by {} while settling the packing (step {}, {:.0f} s); settling is not checkpointed, so it "
                 "starts again when the run is started again{}",
-                sig == SIGINT ? "SIGINT" : "SIGTERM", s.step, seconds_since(t0),
+                stop_signal_name(sig), s.step, seconds_since(t0),
                 is_wedge(c) ? fmt::format(": orodem run {}/config.toml --out {} --resume", dir, dir)
                             : std::string(" (with a new --out)"));
             EventRecord e;
@@ -173,6 +173,7 @@ std::string short_plate_warning(const Config& c, const PlateEstimate& pe) {
 }
 
 int start_run_in(const Config& c, const RunNumbers& n, const std::string& dir, RunObserver& obs) {
+    const DirLock lock = lock_dir(dir, "the run directory");  // one writer (io/files.hpp); held to the end
     const TimestepInfo& t = n.timestep;
     write_file_atomic(dir + "/config.toml", to_toml(c));
     RunLog log(dir);
@@ -223,6 +224,7 @@ int resume_run(const Config& c, const RunNumbers& n, const std::string& dir, Run
                                       "experiments can be resumed", c.run.experiment));
     if (!fs::exists(dir + "/config.toml"))
         throw ConfigError(fmt::format("--resume --out {}: no config.toml there; give the directory of the run to continue", dir));
+    const DirLock lock = lock_dir(dir, "the run directory");  // one writer (io/files.hpp); held to the end
     const Config saved = load_config(dir + "/config.toml");
     if (config_hash(saved) != config_hash(c))
         throw ConfigError(fmt::format("--resume --out {}: {} differs from the run's config ({}); resume with "

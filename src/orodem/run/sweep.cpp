@@ -38,6 +38,9 @@ void use_member_threads(const Config& c) {
 
 /// Runs, continues or keeps one member in this process; its exit status (0 when kept).
 int run_member(const Config& c, const std::string& dir, const std::string& label, SweepObserver& obs) {
+    // One writer: a member of an earlier sweep that was killed gets SIGTERM
+    // (die_with_parent) and writes its shutdown checkpoint; give it a minute.
+    const DirLock lock = lock_dir(dir, "the sweep member", 60.0);
     const MemberState st = member_state(dir);
     if (st == MemberState::finished || st == MemberState::failed) return report_done(st, dir, label, obs);
     if (st == MemberState::resume) {
@@ -104,6 +107,7 @@ pid_t start_member(const std::string& exe, const std::string& dir, int threads) 
     io.log = dir + "/console.txt";
     io.append = true;
     io.new_group = true;
+    io.parent_env = true;  // ORODEM_PARENT_PID: the member ends with this sweep (die_with_parent)
     pid_t pid = -1;
     if (const int rc = spawn_child(args, io, pid); rc != 0)
         throw IoError(fmt::format("cannot start {} for {}: {}", exe, dir, std::strerror(rc)));
@@ -189,7 +193,7 @@ int run_members_at_once(const Sweep& s, const LocalJobs& j, SweepObserver& obs) 
     }
     if (forwarded || stop_rc != 0) {
         obs.trouble(fmt::format("the sweep stopped{}; continue it with: orodem resume {}",
-                                forwarded ? fmt::format(" ({})", forwarded == SIGINT ? "SIGINT" : "SIGTERM")
+                                forwarded ? fmt::format(" ({})", stop_signal_name(forwarded))
                                           : std::string(),
                                 s.root));
         return forwarded ? 128 + forwarded : stop_rc;
@@ -344,6 +348,9 @@ int settle_shared_packings(const std::string& root, int threads, SweepObserver& 
 }
 
 int run_sweep_member(const std::string& dir, int threads, SweepObserver& obs) {
+    // A member started by a local sweep ends with it (SIGTERM: a checkpoint
+    // and a stop) when the sweep dies, however it dies.
+    if (!die_with_parent()) return 128 + SIGTERM;
     const Config c = member_config(fs::path(dir).parent_path().string(), dir, threads);
     use_member_threads(c);
     return run_member(c, dir, fs::path(dir).filename().string(), obs);

@@ -65,7 +65,7 @@ int WedgeRun::run() {
         // line and the command that continues the run.
         if (const int sig = obs_.stop_requested()) {
             if (sim_.step_count != next_output) check();
-            stop_with_checkpoint(RunEvent::interrupted, fmt::format("interrupted by {}", sig == SIGINT ? "SIGINT" : "SIGTERM"),
+            stop_with_checkpoint(RunEvent::interrupted, fmt::format("interrupted by {}", stop_signal_name(sig)),
                                  "resume with");
             return 128 + sig;
         }

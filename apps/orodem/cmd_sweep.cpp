@@ -18,7 +18,6 @@
 #include "orodem/run/sweep_slurm.hpp"
 
 namespace orodem {
-
 namespace {
 
 /// A sweep's lines on the terminal (stdout is line-buffered: main.cpp).

@@ -612,29 +612,48 @@ TEST_F(Resume, StatusSaysHowFarARunGotHowItEndedAndHowToContinueIt) {
     EXPECT_NE(out.find("no such run directory"), std::string::npos) << out;
 }
 
+/// A config of its own for the tests below (others in this suite rewrite tiny.toml), long enough (S = 2) that a
+/// second process starts while the first runs, and its uninterrupted run.
+fs::path long_config(const fs::path& root, fs::path& reference) {
+    const fs::path cfg = root / "long.toml";
+    std::ofstream(cfg) << "[run]\nexperiment = \"exp1\"\n"
+                          "[wedge]\nv = 0.3\ns_max = 2.0\noutput_ds = 0.25\npro_margin = 6.0\nretro_length = 3.0\n"
+                          "[packing]\nh0 = 6.0\nr_min = 0.5\nr_max = 1.0\ncache_dir = \""
+                       << (root / "cache").string() << "\"\n";
+    reference = root / "L-ref";
+    if (!fs::exists(reference / "series.csv")) {
+        const Proc p = start({"run", cfg.string(), "--out", reference.string(), "--threads", "1"}, root / "L-ref");
+        EXPECT_EQ(wait_for(p), 0) << slurp(p.err);
+    }
+    return cfg;
+}
+
 TEST_F(Resume, SighupStopsWithACheckpointAndResumesByteIdentical) {
     // A closed terminal or SSH session (SIGHUP) is a stop with a checkpoint, as SIGTERM (exit 128 + 1).
-    const fs::path run = root_ / "H";
-    const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1"}, root_ / "H");
+    fs::path reference;
+    const fs::path cfg = long_config(root_, reference);
+    const fs::path run = root_ / "sighup";
+    const Proc p = start({"run", cfg.string(), "--out", run.string(), "--threads", "1"}, root_ / "sighup");
     ASSERT_TRUE(signal_after_checkpoint(p, run, {SIGHUP})) << slurp(p.err);
     ASSERT_EQ(wait_for(p), 129) << slurp(p.err);
     EXPECT_NE(slurp(p.err).find("interrupted by SIGHUP"), std::string::npos) << slurp(p.err);
-    const Proc r = start({"resume", run.string(), "--threads", "1"}, root_ / "H-resume");
+    const Proc r = start({"resume", run.string(), "--threads", "1"}, root_ / "sighup-resume");
     ASSERT_EQ(wait_for(r), 0) << slurp(r.err);
-    expect_same_outputs(reference_, run);
+    expect_same_outputs(reference, run);
 }
 
 TEST_F(Resume, TwoWritersOnOneRunDirectoryGiveOneExitTwoAndTheSameOutputs) {
-    // run + resume, run + run --resume, resume + resume: the second is refused at once with the holder's pid
-    // (exit 2, nothing changed), and the run ends byte-identical to an uninterrupted one.
-    const fs::path run = root_ / "W";
-    const Proc p = start({"run", config_.string(), "--out", run.string(), "--threads", "1", "--set",
-                          "run.checkpoint_every_outputs=1"}, root_ / "W");
+    // run + resume, run + run --resume: the second is refused at once with the holder's pid (exit 2, nothing
+    // changed), and the run ends byte-identical to an uninterrupted one.
+    fs::path reference;
+    const fs::path cfg = long_config(root_, reference);
+    const fs::path run = root_ / "two-writers";
+    const Proc p = start({"run", cfg.string(), "--out", run.string(), "--threads", "1"}, root_ / "two-writers");
     ASSERT_TRUE(signal_after_checkpoint(p, run, {})) << slurp(p.err);  // running, with a checkpoint to resume from
     for (const std::vector<std::string>& second :
          {std::vector<std::string>{"resume", run.string()},
           std::vector<std::string>{"run", run.string() + "/config.toml", "--out", run.string(), "--resume"}}) {
-        const Proc q = start(second, root_ / "W-second");
+        const Proc q = start(second, root_ / "two-writers-second");
         const int rc = wait_for(q);
         if (rc == 0) GTEST_SKIP() << "the first run ended before the second started (machine too fast for this test)";
         EXPECT_EQ(rc, 2) << slurp(q.err);
@@ -642,5 +661,5 @@ TEST_F(Resume, TwoWritersOnOneRunDirectoryGiveOneExitTwoAndTheSameOutputs) {
                   std::string::npos) << slurp(q.err);
     }
     ASSERT_EQ(wait_for(p), 0) << slurp(p.err);
-    expect_same_outputs(reference_, run);
+    expect_same_outputs(reference, run);
 }

@@ -17,6 +17,7 @@
 #include "orodem/core/error.hpp"
 #include "orodem/io/config_reader.hpp"
 #include "orodem/io/files.hpp"
+#include "orodem/io/older_runs.hpp"
 
 namespace orodem {
 
@@ -162,9 +163,7 @@ constexpr Named<PackingKind> kCalibrationKinds[] = {
 /// a run directory's resolved config.toml (resolved_file) that lacks the key:
 /// an older orodem wrote it, whose base was the eq. 5 traction (legacy set).
 BaseLaw read_base_law(Reader& r, const toml::table* in, bool resolved_file, bool& legacy) {
-    const bool old_run = resolved_file && !(in && in->contains("base_law"));
-    if (old_run) legacy = true;
-    return r.choice("base_law", old_run ? BaseLaw::traction : BaseLaw::coulomb, kBaseLaws);
+    return r.choice("base_law", older_base_law_default(resolved_file, in && in->contains("base_law"), legacy), kBaseLaws);
 }
 
 /// The eq. 5 traction's own keys are refused under the Coulomb base.

@@ -76,22 +76,10 @@ std::string to_toml_without_defaults(const Config& c) {
     Config n;
     n.resolved = c.resolved;
     try {
-        // A legacy config (Config::legacy_base_law) is compared with the
-        // defaults of the orodem that wrote it: the traction base, and no
-        // base_law key, so that its text, and the hash of its checkpoints, stay
-        // what they were.
-        std::string defaults = fmt::format("[run]\nexperiment = \"{}\"\n", c.run.experiment);
-        if (c.legacy_base_law)
-            defaults += fmt::format("[{}]\nbase_law = \"traction\"\n", is_calibration(c) ? "calibrate" : "wedge");
-        const Config d = parse_config(defaults, "defaults");
-        // wedge.sleep_buffer_pro defaults to wedge.sleep_buffer: at that value
-        // it is left out, so that the hash of a run made before the key
-        // existed (with any sleep_buffer) stays what it was.
-        if (toml::table* w = n.resolved["wedge"].as_table()) {
-            const toml::node* pro = w->get("sleep_buffer_pro");
-            const toml::node* both = w->get("sleep_buffer");
-            if (pro && both && scalar_text(*pro) == scalar_text(*both)) w->erase("sleep_buffer_pro");
-        }
+        // Older run directories' rules (io/older_runs.hpp): the defaults of
+        // the orodem that wrote a legacy config, and the keys it did not write.
+        const Config d = parse_config(older_config_defaults(c), "defaults");
+        drop_keys_older_runs_lacked(n.resolved);
         drop_equal(n.resolved, d.resolved);
     } catch (const ConfigError&) {
         // An experiment without a valid all-defaults config keeps every key.

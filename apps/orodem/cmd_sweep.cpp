@@ -51,7 +51,7 @@ Config sweep_member(const CommonArgs& a, const std::string& key, const std::stri
 int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg, int jobs,
               const SchedulerArgs& s) {
     const bool slurm = s.scheduler == "slurm";
-    check_sweep_scheduler(slurm, s.slurm_given, a.threads, jobs);
+    check_sweep_scheduler(slurm, s.slurm_given, a.threads, jobs, s.slurm);
     const auto [key, values] = parse_vary(vary);
     std::vector<Config> configs;  // every member validated before anything is written
     for (const auto& v : values) configs.push_back(sweep_member(a, key, v));
@@ -66,7 +66,7 @@ int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& o
 
 int cmd_resume(const std::string& dir, int threads, int jobs, const SchedulerArgs& s) {
     const bool slurm = s.scheduler == "slurm";
-    check_sweep_scheduler(slurm, s.slurm_given, threads, jobs);
+    check_sweep_scheduler(slurm, s.slurm_given, threads, jobs, s.slurm);
     if (std::filesystem::exists(sweep_manifest_path(dir))) {
         const DirLock lock = lock_dir(dir, "the sweep folder");  // one sweep process per folder, to the end
         const Sweep sweep = open_sweep(dir);

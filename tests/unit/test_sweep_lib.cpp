@@ -394,3 +394,28 @@ TEST(SlurmLib, ANewSweepSettlesItsSharedPackingInAJobTheArrayWaitsFor) {
     EXPECT_HAS(done.text(), "sweep: no member left to run; nothing submitted\n");
     EXPECT_HAS(done.text(), "sweep: 2 of 2 runs went unstable");
 }
+
+TEST(SweepLib, SweptValuesAndSlurmOptionsThatWouldEscapeOrInjectAreRefused) {
+    // A value names its member's folder: no path in it (a value '/../../esc' put a run outside the sweep).
+    EXPECT_THROW(parse_vary("packing.cache_dir=\"/../../esc\""), ConfigError);
+    EXPECT_THROW(parse_vary("run.seed=1,.."), ConfigError);
+    EXPECT_THROW(parse_vary("wedge.mu_bp=0.1,0.2\n"), ConfigError);
+    // The same value written twice (0.3 and 0.30) is one run, not two.
+    EXPECT_THROW(parse_vary("wedge.mu_bp=0.3,0.30"), ConfigError);
+    EXPECT_THROW(parse_vary("wedge.v=1000,1e3"), ConfigError);
+    EXPECT_NO_THROW(parse_vary("wedge.mu_bp=0.3,0.31"));
+    EXPECT_TRUE(same_toml_value("0.3", "0.30"));
+    EXPECT_FALSE(same_toml_value("\"a\"", "\"b\""));
+    // A newline in a Slurm option would be a line of its own in array.sh (an injected command, a lost --signal).
+    SlurmOptions o;
+    o.partition = "short\ntouch /tmp/injected";
+    EXPECT_THROW(check_sweep_scheduler(true, true, -1, 1, o), ConfigError);
+    o = SlurmOptions{};
+    o.time = "1:00:00\r";
+    EXPECT_THROW(check_sweep_scheduler(true, true, -1, 1, o), ConfigError);
+    o = SlurmOptions{};
+    o.sbatch_args = {"--account=geo", "--qos=x\n#SBATCH --signal=B:KILL"};
+    EXPECT_THROW(check_sweep_scheduler(true, true, -1, 1, o), ConfigError);
+    o.sbatch_args = {"--account=geo"};
+    EXPECT_NO_THROW(check_sweep_scheduler(true, true, -1, 1, o));
+}

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace orodem {
 
@@ -24,6 +25,17 @@ class ConfigError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
 };
+
+/// Refuses (ConfigError) a text holding a control character (a newline, a
+/// tab, ...): folder names, swept values and batch-script options are
+/// written into paths, scripts and one-line tables, where one would break
+/// them (a newline in a Slurm option is a line of its own in the script).
+inline void refuse_control_characters(std::string_view what, std::string_view text) {
+    for (const char c : text)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            throw ConfigError(std::string(what) + " '" + std::string(text.substr(0, 60)) +
+                              "': holds a control character (a newline, a tab...); use printable characters only");
+}
 
 /// A failed read or write; what() names the path and the OS error.
 class IoError : public std::runtime_error {

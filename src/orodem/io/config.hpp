@@ -240,6 +240,10 @@ ConfigBasics config_basics(const Config& c);
 /// One `--set key=value` override; value is TOML syntax (1.5, true, "clusters").
 using Override = std::pair<std::string, std::string>;
 
+/// Whether two --set/--vary values (TOML syntax) are the same value: 0.3 and 0.30, 1e3 and 1000.0; values that
+/// are not TOML are compared as text.
+bool same_toml_value(const std::string& a, const std::string& b);
+
 /// Parses "key=value"; throws ConfigError when there is no '='.
 Override parse_override(const std::string& text);
 

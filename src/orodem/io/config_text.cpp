@@ -87,6 +87,22 @@ std::string to_toml_without_defaults(const Config& c) {
     return to_toml(n);
 }
 
+bool same_toml_value(const std::string& a, const std::string& b) {
+    auto canonical = [](const std::string& v) -> std::string {
+        try {
+            const toml::table t = toml::parse("v = " + v);
+            if (const toml::node* n = t.get("v")) {
+                if (auto i = n->as_integer()) return fmt::format("{}", static_cast<double>(i->get()));
+                if (auto f = n->as_floating_point()) return fmt::format("{}", f->get());
+                return scalar_text(*n);
+            }
+        } catch (const std::exception&) {
+        }
+        return "text:" + v;
+    };
+    return canonical(a) == canonical(b);
+}
+
 bool is_result_neutral(const std::string& dotted_key) {
     for (const ResultNeutralKey& k : kResultNeutralKeys)
         if (dotted_key == fmt::format("{}.{}", k.section, k.key)) return true;

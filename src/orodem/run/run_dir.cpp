@@ -19,6 +19,8 @@ namespace fs = std::filesystem;
 namespace orodem {
 
 std::string choose_run_dir(const std::string& out, const std::string& config_path) {
+    refuse_control_characters("--out", out);
+    refuse_control_characters("the config's name", fs::path(config_path).filename().string());
     auto usable = [](const fs::path& p) { return !fs::exists(p) || (fs::is_directory(p) && fs::is_empty(p)); };
     if (!out.empty()) {
         std::error_code ec;

@@ -215,11 +215,18 @@ std::pair<std::string, std::vector<std::string>> parse_vary(const std::string& t
         if (comma == std::string::npos) break;
         pos = comma + 1;
     }
-    for (const auto& v : values)
+    refuse_control_characters("--vary", text);
+    for (const auto& v : values) {
         if (v.empty()) throw ConfigError(fmt::format("--vary '{}': empty value in the list", text));
+        // A value names its member's folder (KEY=VALUE inside the sweep's): no path in it.
+        if (v.find('/') != std::string::npos || v.find('\\') != std::string::npos || v == "." || v == "..")
+            throw ConfigError(fmt::format("--vary '{}': the value {} holds a path ('/', '\\', '.' or '..'); a value "
+                                          "names its run's folder inside the sweep's, so it may not",
+                                          text, v));
+    }
     for (std::size_t i = 0; i < values.size(); ++i)
         for (std::size_t j = 0; j < i; ++j)
-            if (values[i] == values[j])
+            if (same_toml_value(values[i], values[j]))
                 throw ConfigError(fmt::format("--vary '{}': the value {} is listed twice; each value is one run",
                                               text, values[i]));
     return {text.substr(0, eq), values};
@@ -247,6 +254,7 @@ std::vector<std::string> sweep_folders(const std::string& dir, bool& manifest) {
 }
 
 std::string new_sweep_dir(const std::string& out_arg, const std::string& config_path) {
+    refuse_control_characters("--out", out_arg);
     if (out_arg.empty()) return choose_run_dir("", fs::path(config_path).stem().string() + "-sweep");
     if (fs::exists(out_arg) && !fs::is_empty(out_arg))
         throw ConfigError(fmt::format("--out {}: directory exists and is not empty; choose a new directory{}", out_arg,

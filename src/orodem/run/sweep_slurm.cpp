@@ -13,7 +13,11 @@ namespace orodem {
 
 namespace fs = std::filesystem;
 
-void check_sweep_scheduler(bool slurm, bool slurm_options, int threads, int jobs) {
+void check_sweep_scheduler(bool slurm, bool slurm_options, int threads, int jobs, const SlurmOptions& o) {
+    // Each is written into the batch scripts: a newline there would be a line of its own.
+    refuse_control_characters("--partition", o.partition);
+    refuse_control_characters("--time", o.time);
+    for (const auto& a : o.sbatch_args) refuse_control_characters("--sbatch-arg", a);
     if (!slurm) {
         if (slurm_options)
             throw ConfigError("--partition, --time, --cpus-per-task and --sbatch-arg go with --scheduler slurm");

@@ -22,8 +22,9 @@ namespace orodem {
 /// ConfigError when the scheduler's options do not fit the rest of the
 /// command line: Slurm options without --scheduler slurm (slurm_options),
 /// --jobs or --threads with it (each member is one array task, with as many
-/// threads as its CPUs).
-void check_sweep_scheduler(bool slurm, bool slurm_options, int threads, int jobs);
+/// threads as its CPUs), or a control character in a Slurm option (each is
+/// written into the batch scripts).
+void check_sweep_scheduler(bool slurm, bool slurm_options, int threads, int jobs, const SlurmOptions& o = {});
 
 /// The members to submit (array task k is member k), and those not submitted
 /// again because their task is still in Slurm's queue.

@@ -19,6 +19,19 @@ using namespace orodem;
 namespace {
 
 /// --scheduler and the Slurm options of sweep and resume; `cpus` describes --cpus-per-task.
+/// Refuses NaN and infinities, which CLI11's ranges let through (NaN compares false with both ends).
+const CLI::Validator kFinite(
+    [](const std::string& s) {
+        try {
+            std::size_t used = 0;
+            const double v = std::stod(s, &used);
+            if (!std::isfinite(v)) return std::string("must be a finite number, not ") + s;
+        } catch (const std::exception&) {
+        }
+        return std::string();
+    },
+    "FINITE");
+
 /// A --color-by option: one of kColorBys's names, parsed once into `out`.
 CLI::Option* add_color_by(CLI::App* cmd, orodem::ColorBy& out, const std::string& help) {
     std::vector<std::string> names;
@@ -179,7 +192,7 @@ int main(int argc, char** argv) {
     movie->add_option("run_dir", ma.run_dir, "Run directory")->required();
     movie->add_option("--out", ma.out, "Output file, .mp4 or .gif")->required();
     add_color_by(movie, ma.color_by, "Colouring");
-    movie->add_option("--fps", ma.fps, "Frames (snapshots) per second")->check(CLI::Range(0.1, 60.0))->capture_default_str();
+    movie->add_option("--fps", ma.fps, "Frames (snapshots) per second")->check(CLI::Range(0.1, 60.0))->check(kFinite)->capture_default_str();
     movie->add_option("--width", ma.width, "Frame width in pixels")->check(CLI::Range(200, 8000))->capture_default_str();
     movie->add_flag("--force", ma.force, "Replace the file if it exists already");
 
@@ -205,9 +218,10 @@ int main(int argc, char** argv) {
     double taper_phi = 0.0, taper_phib = std::nan(""), taper_mu_b = std::nan(""), taper_beta = 0.0;
     auto* taper = app.add_subcommand("taper", "Critical surface slopes of a dry noncohesive Coulomb wedge "
                                               "(exact solution of Dahlen 1984, both branches)");
-    taper->add_option("--phi", taper_phi, "Internal friction angle phi, degrees, in (0, 90)")->required();
-    auto* taper_phib_opt = taper->add_option("--phib", taper_phib, "Basal friction angle phi_b, degrees, in [0, phi)");
+    taper->add_option("--phi", taper_phi, "Internal friction angle phi, degrees, in (0, 90)")->required()->check(kFinite);
+    auto* taper_phib_opt = taper->add_option("--phib", taper_phib, "Basal friction angle phi_b, degrees, in [0, phi)")->check(kFinite);
     taper->add_option("--mu-b", taper_mu_b, "Basal friction coefficient mu_b = tan(phi_b), instead of --phib")
+        ->check(kFinite)
         ->excludes(taper_phib_opt);
     taper->add_option("--beta", taper_beta, "Basal dip beta, degrees, positive toward the hinterland")
         ->capture_default_str();
@@ -228,7 +242,7 @@ int main(int argc, char** argv) {
     std::uint64_t pile_steps = 20000;
     int pile_threads = 0;
     pile->add_option("--pile", pile_file, "Start state, 'id x y r' per line")->capture_default_str();
-    pile->add_option("--steps", pile_steps, "Timesteps to run")->capture_default_str();
+    pile->add_option("--steps", pile_steps, "Timesteps to run")->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1000000000}))->capture_default_str();
     pile->add_option("--threads", pile_threads, "OpenMP threads (0 = all cores)")->check(CLI::Range(0, 1024));
 
     // A first word that is neither an option nor a command: say so (CLI11

@@ -359,3 +359,13 @@ TEST_F(Cli, AnUnwritableCacheIsAWarningAndTheRunIsTheSame) {
     ASSERT_EQ(orodem("run rw.toml --out rw --threads 1").status, 0);
     EXPECT_EQ(slurp(work_ / "ro" / "series.csv"), slurp(work_ / "rw" / "series.csv"));
 }
+
+TEST_F(Cli, NanAndNegativeCountsOnTheCommandLineExitTwo) {
+    // CLI11's ranges let NaN through (it compares false with both ends), and a negative step count wrapped to
+    // 1.8e19 steps: each is refused at once with one line.
+    for (const char* cmd : {"bench pile --steps -1", "bench pile --steps 0", "taper --phi 30 --mu-b nan",
+                            "taper --phi nan --mu-b 0.3", "taper --phi 30 --phib inf"}) {
+        const Result r = orodem(cmd);
+        EXPECT_EQ(r.status, 2) << cmd << ": " << r.err;
+    }
+}

@@ -12,11 +12,47 @@
 
 #include "orodem/core/error.hpp"
 #include "orodem/io/checkpoint.hpp"
+#include "orodem/io/fault_table.hpp"
 #include "orodem/io/files.hpp"
 
 namespace fs = std::filesystem;
 
 namespace orodem {
+
+std::vector<RunDirFile> run_dir_files() {
+    return {
+        {"`config.toml`", "the fully resolved config: every key with its value, defaults written out; it is itself a "
+                          "valid config that reproduces the run"},
+        {"`log.txt`", "what happened: dt and stability margin, packing settled or reused from the cache, timings"},
+        {"`events.csv`", fmt::format("the same events as numbers, for programs (`orodem status`, sweeps): `{}` with one "
+                                     "row per start, resume, output and end of a piece (finished, interrupted, "
+                                     "time_limit, io_error, unstable, stopped); append-only",
+                                     kEventsHeader)},
+        {"`checkpoint/`", "the newest two checkpoints (`ckpt-<step>.bin`) from which `orodem resume` continues the run "
+                          "exactly"},
+        {"`series.csv`", "one row per output (every `wedge.output_ds` of S), header row first; its columns are listed "
+                         "below (\"series.csv columns\"); for `settle`: "
+                         "`step,time,kinetic_energy,ke_ratio,contacts,max_overlap_ratio` (header only when the layer "
+                         "came from the cache)"},
+        {"`faults.csv`", fmt::format("the fault table: one row per known fault per output, `{}` (x from the S point, y "
+                                     "from the base; `active = 0`: not found at this output, its last geometry); "
+                                     "`orodem faults RUN_DIR` prints it",
+                                     faults_header())},
+        {"`run.pvd`, `snapshots/S*.vtu`",
+         "ParaView time series (time value = S): per disc `id`, `radius`, `velocity`, `initial_depth`, `side` (0 pro, "
+         "1 retro), `cluster_id`, `rel_disp` (normalised per snapshot), `omega`, `fixed`, `asleep`, `shear_strain`, "
+         "`vol_strain`, `rotation`, `d2min`, `shear_strain_total` (finite, from S = 0), `rel_disp_abs` (m); field data "
+         "`S`, `step`, `time`. Units and normalisation of each: [python.md](python.md)"},
+        {"`figures/`",
+         "`horizons_S*.png` (initial-depth bands, retroside darker), `displacement_S*.png` (relative displacement of "
+         "neighbours since the previous output per unit convergence, on one fixed colour bar), `strain_S*.png` (each "
+         "disc's incremental maximum shear strain γ over the output interval on one fixed log colour bar, 0.001 to 1, "
+         "with the output's active faults drawn from root to tip: pro-vergent solid blue, retro-vergent dashed "
+         "green), all of one size with their legends ([figures.md](figures.md)); `plots.png` (α, β, H, peak, D vs S); "
+         "`rendered/` what `orodem render` draws without `--out`"},
+        {"`packing.bin`", "`settle` only: the settled layer (binary, checksummed)"},
+    };
+}
 
 std::string choose_run_dir(const std::string& out, const std::string& config_path) {
     refuse_control_characters("--out", out);

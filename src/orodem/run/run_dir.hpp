@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "orodem/io/config.hpp"
 #include "orodem/run/run_log.hpp"
@@ -18,6 +19,15 @@ namespace orodem {
 /// A new run directory: `out` if given (must be absent or empty, else
 /// ConfigError), else runs/<config stem>, runs/<stem>-2, ... whichever is free first.
 std::string choose_run_dir(const std::string& out, const std::string& config_path);
+
+/// The files of a run directory and what each holds, in one table (docs/reference.md "Run directory" is made
+/// from it; tests/unit/test_docs_reference.cpp checks), the headers of events.csv and faults.csv from the code
+/// that writes them.
+struct RunDirFile {
+    std::string file;      // as markdown, e.g. `series.csv`
+    std::string contents;  // as markdown
+};
+std::vector<RunDirFile> run_dir_files();
 /// Throws ConfigError unless dir exists and holds a config.toml.
 void require_run_dir(const std::string& dir);
 

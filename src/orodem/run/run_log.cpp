@@ -13,7 +13,7 @@ namespace orodem {
 
 namespace {
 
-constexpr const char* kHeader = "event,step,S,dt,wall_s,steps_per_s,text";
+constexpr const char* kHeader = kEventsHeader;
 
 struct EventSpelling {
     RunEvent kind;

@@ -26,6 +26,9 @@
 
 namespace orodem {
 
+/// events.csv's header.
+inline constexpr const char* kEventsHeader = "event,step,S,dt,wall_s,steps_per_s,text";
+
 enum class RunEvent { start, resume, output, finished, interrupted, time_limit, io_error, unstable, stopped };
 
 struct EventRecord {

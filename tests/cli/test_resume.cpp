@@ -663,3 +663,20 @@ TEST_F(Resume, TwoWritersOnOneRunDirectoryGiveOneExitTwoAndTheSameOutputs) {
     ASSERT_EQ(wait_for(p), 0) << slurp(p.err);
     expect_same_outputs(reference, run);
 }
+
+TEST_F(Resume, StoppedBetweenTheFirstRowAndTheFirstCheckpointItStartsAgainAndEndsTheSame) {
+    // A SIGKILL or a full disk right after the S = 0 row, before the first checkpoint: `orodem status` says to
+    // resume, and resume starts the run again in place (the S = 0 row is what a start writes again), ending
+    // byte-identical to the uninterrupted run.
+    const fs::path run = root_ / "first-row";
+    fs::copy(reference_, run, fs::copy_options::recursive);
+    fs::remove_all(run / "checkpoint");
+    const std::string series = slurp(run / "series.csv");
+    std::size_t second = series.find('\n');
+    second = series.find('\n', second + 1);
+    std::ofstream(run / "series.csv", std::ios::trunc) << series.substr(0, second + 1);  // header and the S = 0 row
+    const Proc r = start({"resume", run.string(), "--threads", "1"}, root_ / "first-row");
+    ASSERT_EQ(wait_for(r), 0) << slurp(r.err);
+    EXPECT_HAS(slurp(r.out) + slurp(r.err), "no checkpoint yet: starting the run from the beginning");
+    expect_same_outputs(reference_, run);
+}

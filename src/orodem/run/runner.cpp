@@ -232,16 +232,19 @@ int resume_run(const Config& c, const RunNumbers& n, const std::string& dir, Run
                                       dir, c.path, first_config_difference(saved, c), dir, dir));
     if (list_checkpoints(dir + "/checkpoint").empty()) {
         // Outputs but no checkpoint (checkpoint/ deleted or emptied): they
-        // cannot be continued, and starting again would rewrite them.
-        if (const std::size_t rows = series_rows(dir + "/series.csv"); rows > 0)
+        // cannot be continued, and starting again would rewrite them. The
+        // S = 0 row alone is what a start writes again byte for byte (a stop
+        // between it and the first checkpoint): the run starts again.
+        if (const std::size_t rows = series_rows(dir + "/series.csv"); rows > 1)
             throw ConfigError(fmt::format(
                 "--resume {}: no checkpoint in {}/checkpoint/, but series.csv has {} output rows; a resume cannot "
                 "continue them and would overwrite them, so nothing was changed. Keep the run as it is, or start "
                 "it again in a new directory: orodem run {}/config.toml --out NEW_DIR",
                 dir, dir, rows, dir));
-        // Interrupted before its first checkpoint (while settling): nothing
-        // to continue, so the run starts from the beginning in the same place.
-        for (const char* partial : {"series.csv", "run.pvd", "snapshots", "figures", "checkpoint"})
+        // Interrupted before its first checkpoint (while settling, or right
+        // after the S = 0 row): nothing to continue, so the run starts from
+        // the beginning in the same place.
+        for (const char* partial : {"series.csv", "faults.csv", "run.pvd", "snapshots", "figures", "checkpoint"})
             remove_path((fs::path(dir) / partial).string());
         RunLog log(dir);
         EventRecord e;

@@ -23,10 +23,8 @@ namespace {
 const CLI::Validator kFinite(
     [](const std::string& s) {
         try {
-            std::size_t used = 0;
-            const double v = std::stod(s, &used);
-            if (!std::isfinite(v)) return std::string("must be a finite number, not ") + s;
-        } catch (const std::exception&) {
+            if (!std::isfinite(std::stod(s))) return std::string("must be a finite number, not ") + s;
+        } catch (const std::exception&) {  // not a number at all: the option's own parse refuses it
         }
         return std::string();
     },

@@ -71,9 +71,10 @@ TEST(Config, UnknownKeyInEverySectionIsRefused) {
 }
 
 TEST(Config, UnknownTopLevelTableIsRefused) {
-    const std::string msg = refusal(kBase + "[materials]\nk_n = 1e8\n");
+    const std::string msg = refusal(kBase + "[matrial]\nk_n = 1e8\n");
     EXPECT_HAS(msg, "test.toml:3:");
-    EXPECT_HAS(msg, "'materials'");
+    EXPECT_HAS(msg, "'matrial'");
+    EXPECT_HAS(msg, "did you mean 'material'?");
     for (const char* t : {"run", "material", "packing", "numerics"}) EXPECT_HAS(msg, t);  // the allowed tables
 }
 

@@ -172,6 +172,98 @@ TEST(PairKernel, BitIdenticalToThePerPairLoop) {
     select_kernel_isa(nullptr);
 }
 
+namespace {
+/// A variant of `base` with other springs, friction and cohesion and the
+/// same damping ratios (so the same dashpot kind): a second material.
+LawParams material_variant(const LawParams& base, double k_scale, double mu, double cohesion) {
+    LawParams l = base;
+    l.k_n = base.k_n * k_scale;
+    l.k_s = base.k_s * k_scale;
+    l.mu = mu;
+    l.cohesion = cohesion;
+    if (base.damp_sqrt_n != 0.0) l.damp_sqrt_n = base.damp_sqrt_n * std::sqrt(k_scale);
+    if (base.damp_sqrt_s != 0.0) l.damp_sqrt_s = base.damp_sqrt_s * std::sqrt(k_scale);
+    return l;
+}
+}  // namespace
+
+TEST(PairKernel, PerPairLawsBitIdenticalToThePerPairLoop) {
+    // Several materials (PairKernelData::k_n_pair ...): each pair's own law
+    // from the columns gives, bit for bit, eval_contact with that law; the
+    // plastic slip recorded is what the Coulomb rescaling took off |ξ + the
+    // dashpot part| (for no tangential dashpot, |ξ_trial| − F_max / k_s),
+    // and a pair with history that no longer touches is marked.
+    for (const KernelIsa isa : runnable_isas()) {
+        SCOPED_TRACE(isa_name(isa));
+        select_kernel_isa(isa_name(isa));
+        for (const std::uint64_t seed : {1u, 2u, 3u}) {
+            for (const LawParams& base : {bench_law(), ratio_law()}) {
+                const LawParams laws[3] = {base, material_variant(base, 3.0, 0.1, 0.0),
+                                           material_variant(base, 0.5, 0.7, 2.0)};
+                const PairSet s = make_setup(seed);
+                const std::size_t n = s.cs.size();
+                const double dt = 1e-4;
+                std::vector<std::size_t> which(n);
+                for (std::size_t k = 0; k < n; ++k) which[k] = (s.cs.i[k] * 7 + s.cs.j[k]) % 3;
+                ContactStore want = s.cs;
+                for (std::size_t k = 0; k < n; ++k) reference_pair(s.p, want, k, s.W, dt, laws[which[k]], true);
+                ContactStore got = s.cs;
+                std::vector<double> gn(n), gs(n), kn(n), ks(n), mu(n), coh(n), slip(n, 0.0), ri(n), rj(n);
+                std::vector<std::uint8_t> broke(n, 0);
+                double* const gs_col = zero_gamma_s(base) ? nullptr : gs.data();
+                for (std::size_t k = 0; k < n; ++k) {
+                    const LawParams& l = laws[which[k]];
+                    pair_dashpots(l, s.p.mass.data(), s.p.inv_mass.data(), 0.0, got.i.data(), got.j.data(), k, k + 1,
+                                  gn.data(), gs_col);
+                    kn[k] = l.k_n, ks[k] = l.k_s, mu[k] = l.mu, coh[k] = l.cohesion;
+                }
+                pair_radii(s.p.radius.data(), got.i.data(), got.j.data(), 0, n, ri.data(), rj.data());
+                PairKernelData kd{s.p.x.data(),  s.p.v.data(),      s.p.omega.data(), ri.data(), rj.data(),
+                                  got.i.data(),  got.j.data(),      got.shift.data(), got.bonded.data(),
+                                  gn.data(),     gs_col,            got.xi.data(),    got.f.data(),
+                                  got.c.data(),  s.W,               dt,               base,
+                                  true,          s.p.size()};
+                kd.k_n_pair = kn.data();
+                kd.k_s_pair = ks.data();
+                kd.mu_pair = mu.data();
+                kd.cohesion_pair = coh.data();
+                kd.slip = slip.data();
+                kd.broke = broke.data();
+                const std::size_t cuts[] = {0, 3 + seed, 21 + 3 * seed, 99 + seed, n / 2 + 2 * seed, n};
+                for (std::size_t c = 0; c + 1 < std::size(cuts); ++c) eval_pair_range(kd, cuts[c], cuts[c + 1]);
+                EXPECT_TRUE(same_bits(got.f, want.f)) << "seed " << seed;
+                EXPECT_TRUE(same_bits(got.c, want.c)) << "seed " << seed;
+                EXPECT_TRUE(same_bits(got.xi, want.xi)) << "seed " << seed;
+                std::size_t sliding = 0, separated = 0;
+                for (std::size_t k = 0; k < n; ++k) {
+                    const Vec2 xi0 = s.cs.xi[k];
+                    const bool touching = want.f[k].x != 0.0 || want.f[k].y != 0.0 || s.cs.bonded[k];
+                    EXPECT_EQ(broke[k], (!touching && (xi0.x != 0.0 || xi0.y != 0.0)) ? 1 : 0) << k;
+                    separated += broke[k];
+                    if (!touching || s.cs.bonded[k] || !zero_gamma_s(base)) continue;
+                    // No tangential dashpot: the trial ξ (projected) against the kept one.
+                    const Vec2 d = s.p.x[s.cs.i[k]] - (s.p.x[s.cs.j[k]] + Vec2{s.cs.shift[k] * s.W, 0.0});
+                    const Vec2 nn = (1.0 / norm(d)) * d;
+                    const Vec2 vr = s.p.v[s.cs.i[k]] - s.p.v[s.cs.j[k]];
+                    const double spin = s.p.radius[s.cs.i[k]] * s.p.omega[s.cs.i[k]] +
+                                        s.p.radius[s.cs.j[k]] * s.p.omega[s.cs.j[k]];
+                    const Vec2 vt = vr - dot(vr, nn) * nn + spin * Vec2{nn.y, -nn.x};
+                    Vec2 trial = xi0 + dt * vt;
+                    trial -= dot(trial, nn) * nn;
+                    const double expect = norm(trial) - norm(want.xi[k]);
+                    EXPECT_NEAR(slip[k], expect, 1e-12 + 1e-9 * norm(trial)) << k;
+                    sliding += slip[k] > 0.0 ? 1 : 0;
+                }
+                if (zero_gamma_s(base)) {
+                    EXPECT_GT(sliding, 20u);
+                }
+                EXPECT_GT(separated, 20u);
+            }
+        }
+    }
+    select_kernel_isa(nullptr);
+}
+
 TEST(PairKernel, GatherBitIdenticalToThePlainSums) {
     // Phase B against: f = m g; f += f_k over owned pairs; f -= f_k over
     // incoming pairs (in_pair order); t likewise; then the half kick. In

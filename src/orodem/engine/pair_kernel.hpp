@@ -61,6 +61,15 @@ struct PairKernelData {
     LawParams law;
     bool update_history;
     std::size_t n_discs;  // slots in x, v, ω (bounds phase A's window loads of disc i)
+    // Several materials (Simulation::materials): each pair's law as columns,
+    // read instead of law.k_n, k_s, mu and cohesion, and each pair's plastic
+    // slip and separation recorded (phase_a.hpp PerPair); null with one material.
+    const double* k_n_pair = nullptr;       // [N/m]
+    const double* k_s_pair = nullptr;       // [N/m]
+    const double* mu_pair = nullptr;        // μ, weakened by the discs' damage [-]
+    const double* cohesion_pair = nullptr;  // C, 0 once lost [N]
+    double* slip = nullptr;                 // plastic tangential slip since the last rebuild, added to [m]
+    std::uint8_t* broke = nullptr;          // set to 1 when a pair with history no longer touches
 };
 
 /// The dashpots of pairs [begin, end) from the discs' masses, as eval_contact

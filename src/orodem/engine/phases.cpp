@@ -35,6 +35,13 @@ void Simulation::refresh_dashpots() {
         columns_.gamma_s.resize(npairs);
     columns_.r_i.resize(npairs);
     columns_.r_j.resize(npairs);
+    if (has_materials()) {
+        refresh_material_columns();  // each pair's own law and dashpots (engine/materials.cpp)
+        pair_radii(p.radius.data(), cs.i.data(), cs.j.data(), 0, npairs, columns_.r_i.data(), columns_.r_j.data());
+        columns_.stale = false;
+        columns_.epoch = p.inertia_epoch;
+        return;
+    }
 #pragma omp parallel if(static_cast<long long>(npairs) >= kParallelMin)
     {
         const auto [b, e] = thread_range(npairs, 64);
@@ -55,10 +62,20 @@ PairKernelData Simulation::pair_kernel_data(bool update_history) {
     if (columns_.stale || columns_.epoch != p.inertia_epoch || columns_.gamma_n.size() != cs.size() ||
         (!gamma_s_zero && columns_.gamma_s.size() != cs.size()))
         refresh_dashpots();
-    return {p.x.data(),      p.v.data(),           p.omega.data(),        columns_.r_i.data(), columns_.r_j.data(), cs.i.data(),
-            cs.j.data(),     cs.shift.data(),      cs.bonded.data(),      columns_.gamma_n.data(),
-            gamma_s_zero ? nullptr : columns_.gamma_s.data(), cs.xi.data(),    cs.f.data(),           cs.c.data(),     params.period_x,
-            params.dt,       params.law,           update_history,        p.size()};
+    PairKernelData d{p.x.data(),      p.v.data(),           p.omega.data(),        columns_.r_i.data(), columns_.r_j.data(), cs.i.data(),
+                     cs.j.data(),     cs.shift.data(),      cs.bonded.data(),      columns_.gamma_n.data(),
+                     gamma_s_zero ? nullptr : columns_.gamma_s.data(), cs.xi.data(),    cs.f.data(),           cs.c.data(),     params.period_x,
+                     params.dt,       params.law,           update_history,        p.size()};
+    if (has_materials()) {
+        MaterialColumns& mc = material_columns_;
+        d.k_n_pair = mc.k_n.data();
+        d.k_s_pair = mc.k_s.data();
+        d.mu_pair = mc.mu.data();
+        d.cohesion_pair = mc.cohesion.data();
+        d.slip = material_state_.slip.data();
+        d.broke = material_state_.broke.data();
+    }
+    return d;
 }
 
 GatherData Simulation::gather_data(bool update_history, bool kick) {

@@ -121,6 +121,7 @@ void Simulation::rebuild_pairs() {
         sleep_bounds(d);
         sleep_decision_ = d;
     }
+    if (has_materials()) absorb_slip();  // the old pair list's slip into damage (engine/materials.cpp)
     builder_.rebuild(particles, bonds, walls, builder_settings(), contacts, wall_contacts);
     wall_shift_.assign(walls.size(), Vec2{});
     max_disp2_ = 0.0;

@@ -36,6 +36,7 @@
 #include "orodem/engine/phase_clock.hpp"
 #include "orodem/neighbor/pair_builder.hpp"
 #include "orodem/physics/contact_law.hpp"
+#include "orodem/physics/materials.hpp"
 #include "orodem/state/contacts.hpp"
 #include "orodem/state/particles.hpp"
 
@@ -83,6 +84,11 @@ public:
     BondTopology bonds;
     SimParams params;
     std::vector<std::unique_ptr<Boundary>> boundaries;
+    /// Several materials (physics/materials.hpp, engine/materials.cpp): empty
+    /// in a one-material run (params.law for every pair). When set, together
+    /// with ParticleStore::material, layer and damage, before initialize().
+    MaterialTable materials;
+    bool has_materials() const { return !materials.materials.empty(); }
 
     std::uint64_t step_count = 0;  // steps taken
     double time = 0.0;             // simulated time [s]
@@ -160,6 +166,21 @@ public:
     };
     void save_internals(ByteWriter& w) const;
     static Internals read_internals(ByteReader& r);
+    /// The materials' state between rebuilds (engine/materials.cpp), saved
+    /// in checkpoints of runs with materials only: each pair's plastic slip
+    /// and separation since the last rebuild, the pairs whose cohesion is
+    /// lost, and the time of the last damage update.
+    struct MaterialState {
+        std::vector<double> slip;                   // per pair [m]
+        std::vector<std::uint8_t> broke;            // per pair
+        std::vector<std::uint64_t> cohesion_lost;   // pair keys, ascending
+        double damage_time = 0.0;                   // [s]
+    };
+    void save_material_state(ByteWriter& w) const;
+    static MaterialState read_material_state(ByteReader& r);
+    void restore_material_state(MaterialState&& m);
+    /// The pair keys whose cohesion is lost for good (ascending).
+    const std::vector<std::uint64_t>& cohesion_lost() const { return material_state_.cohesion_lost; }
     /// After particles, contacts and walls are in place: the derived caches
     /// (bonds, wall laws, wall-disc lists, dashpots) and the saved internals.
     void restore_internals(Internals&& v);
@@ -259,6 +280,21 @@ private:
         bool in_slots_stale = true;
     } columns_;
     void refresh_dashpots();
+
+    // Several materials (engine/materials.cpp).
+    MaterialState material_state_;
+    struct MaterialColumns {
+        std::vector<double> k_n, k_s, mu, cohesion;  // per pair: the pair's law (PairKernelData::k_n_pair ...)
+        std::vector<double> add, cluster_add;        // scratch of absorb_slip, per slot and per cluster [mean diameters]
+        std::vector<std::uint64_t> lost_now;         // scratch: keys newly lost at this rebuild
+    } material_columns_;
+    /// Before a rebuild (pairs still in the old order): each pair's slip into
+    /// its particles' damage, the broken pairs' cohesion lost, healing; the
+    /// slip and separation columns zeroed.
+    void absorb_slip();
+    /// The per-pair law columns and dashpots of the current pair list from
+    /// the materials, the damage and the lost cohesion (in refresh_dashpots).
+    void refresh_material_columns();
 };
 
 /// Builds the bond topology (all pairs inside each cluster) from cluster ids.

@@ -214,6 +214,12 @@ std::string encode_checkpoint(const Simulation& sim, const RunLoopState& run, st
     for (const Fault& f : run.faults) put_fault(w, f);
     w.put(run.stage);
     w.put(run.stage_last_output);
+    if (sim.has_materials()) {
+        // Only in runs with several materials: a one-material checkpoint keeps its bytes.
+        put_tag(w, "materials");
+        p.for_each_material_column([&](const auto& col) { w.put_vector(col); });
+        sim.save_material_state(w);
+    }
     put_tag(w, "end");
 
     const std::string& payload = w.bytes();
@@ -255,6 +261,7 @@ void decode_checkpoint(std::string_view bytes, AcceptedHashes expected_config_ha
     std::uint64_t step = 0;
     double time = 0.0;
     Simulation::Internals internals;
+    Simulation::MaterialState materials;
     std::vector<std::string> boundary_state;
     RunLoopState run;
     try {
@@ -363,7 +370,23 @@ void decode_checkpoint(std::string_view bytes, AcceptedHashes expected_config_ha
                 r.get(run.stage_last_output);
             }
         }
-        expect_tag(r, "end");
+        std::string tag = r.get_string();
+        if (tag == "materials") {
+            if (!sim.has_materials()) bad("a checkpoint of a run with several materials, for a run with one");
+            p.for_each_material_column([&](auto& col) {
+                r.get_vector(col);
+                if (col.size() != n) bad(fmt::format("a material column has {} entries for {} discs", col.size(), n));
+            });
+            for (std::size_t s = 0; s < n; ++s)
+                if (p.material[s] >= sim.materials.materials.size()) bad(fmt::format("material id {} at slot {}", p.material[s], s));
+            materials = Simulation::read_material_state(r);
+            if (materials.slip.size() != c.size() || materials.broke.size() != c.size())
+                bad("material pair columns differ in length from the pairs");
+            tag = r.get_string();
+        } else if (sim.has_materials()) {
+            bad("a checkpoint of a run with one material, for a run with several");
+        }
+        if (tag != "end") throw CheckpointError(fmt::format("section 'end' expected, found '{}'", tag));
         if (r.remaining() != 0) bad(fmt::format("{} bytes left over", r.remaining()));
         if (!(internals.awake_begin <= internals.awake_end && internals.awake_end <= p.size() &&
               internals.pairs_begin <= internals.pairs_end && internals.pairs_end <= c.size() &&
@@ -405,6 +428,7 @@ void decode_checkpoint(std::string_view bytes, AcceptedHashes expected_config_ha
     sim.step_count = step;
     sim.time = time;
     sim.restore_internals(std::move(internals));
+    if (sim.has_materials()) sim.restore_material_state(std::move(materials));
     run_out = std::move(run);
 }
 

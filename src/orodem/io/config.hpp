@@ -90,6 +90,32 @@ struct MaterialConfig {
     bool clamp_normal = true;         // unbonded contacts never attract (F_n >= 0)
 };
 
+/// A named material of a layered wedge ([materials.NAME]; physics/materials.hpp):
+/// the keys it does not give take [material]'s values; the damping is
+/// [material]'s for every material.
+struct NamedMaterial {
+    std::string name;                 // the NAME of [materials.NAME]
+    MaterialConfig m;                 // density, k_n, k_s_over_k_n, mu (the peak μ), cohesion
+    double mu_residual = 0.0;         // μ_res after weakening [-]; default: mu (no weakening)
+    double weakening_distance = 1.0;  // sliding distance over which μ falls from mu to mu_residual [mean disc diameters]
+    double healing = 0.0;             // damage healed per unit of S [mean disc diameters]
+    bool cohesion_loss = false;       // a contact's cohesion is lost for good once it slides or separates
+};
+
+/// One layer of a layered wedge ([[layers]] from the base up, [[retro_layers]]).
+struct LayerConfig {
+    std::string material;             // a NAME of [materials.NAME]
+    double thickness = 0.0;           // [h0]; the layers add up to 1
+};
+
+/// The friction of a pair of materials named explicitly ([[friction_pairs]]);
+/// otherwise the smaller of the two materials' values.
+struct FrictionPair {
+    std::string a, b;                 // material names
+    double mu = 0.0;                  // peak μ of a contact between them [-]
+    double mu_residual = 0.0;         // residual μ [-]; default mu
+};
+
 struct PackingConfig {
     PackingKind kind = PackingKind::clusters;  // hexagonal | discs | clusters ([33]-[37])
     double r_min = 0.5;               // smallest disc radius [m]
@@ -154,6 +180,13 @@ struct Config {
     PackingConfig packing;
     NumericsConfig numerics;
     CalibrateConfig calibrate;        // calibration experiments only
+    // Layered wedges (docs/physics.md "Materials, layers and weakening"):
+    // empty in a one-material run, which [material] alone describes.
+    std::vector<NamedMaterial> materials;      // [materials.NAME], in name order (material ids)
+    std::vector<LayerConfig> layers;           // [[layers]]: the incoming plate from the base up
+    std::vector<LayerConfig> retro_layers;     // [[retro_layers]]: the retroside; default the same as layers
+    std::vector<FrictionPair> friction_pairs;  // [[friction_pairs]]
+    bool layered() const { return !layers.empty(); }
     toml::table resolved;             // every key with its final value
     // A run directory's config.toml written before base_law existed (orodem
     // 0.x up to the Coulomb base) has no base_law key: it is read as

@@ -39,12 +39,19 @@ std::string scalar_text(const toml::node& n) {
 void emit_table(std::ostringstream& os, const toml::table& t, const std::string& path) {
     if (!path.empty()) os << '[' << path << "]\n";
     for (auto&& [k, v] : t)
-        if (!v.is_table()) os << k.str() << " = " << scalar_text(v) << '\n';
+        if (!v.is_table() && !v.is_array_of_tables()) os << k.str() << " = " << scalar_text(v) << '\n';
     for (auto&& [k, v] : t)
         if (v.is_table()) {
             os << '\n';
             emit_table(os, *v.as_table(), path.empty() ? std::string(k.str()) : path + "." + std::string(k.str()));
         }
+    // Arrays of tables ([[layers]] of a layered wedge): each element as [[path.key]] with its scalars.
+    for (auto&& [k, v] : t)
+        if (v.is_array_of_tables())
+            for (const toml::node& e : *v.as_array()) {
+                os << "\n[[" << (path.empty() ? std::string(k.str()) : path + "." + std::string(k.str())) << "]]\n";
+                for (auto&& [ek, ev] : *e.as_table()) os << ek.str() << " = " << scalar_text(ev) << '\n';
+            }
 }
 }  // namespace
 

@@ -74,6 +74,19 @@ void write_vtu(const std::string& path, const ParticleStore& p, const std::vecto
         if (strain->shear_total.size() == n)
             all_point_data.push_back(make_array("shear_strain_total", "Float64", 1, strain->shear_total));
     }
+    if (p.has_materials()) {  // layered runs only: material and layer ids, damage [mean diameters]
+        std::vector<std::int32_t> material(n), layer(n);
+        std::vector<double> damage(n);
+        for (std::uint32_t k = 0; k < n; ++k) {
+            const std::size_t s = p.slot_of_id[k];
+            material[k] = p.material[s];
+            layer[k] = p.layer[s];
+            damage[k] = p.damage[s];
+        }
+        all_point_data.push_back(make_array("material", "Int32", 1, material));
+        all_point_data.push_back(make_array("layer", "Int32", 1, layer));
+        all_point_data.push_back(make_array("damage", "Float64", 1, damage));
+    }
     if (rel_disp_abs && rel_disp_abs->size() == n) {  // per slot: into id order
         std::vector<double> abs(n);
         for (std::uint32_t k = 0; k < n; ++k) abs[k] = (*rel_disp_abs)[p.slot_of_id[k]];

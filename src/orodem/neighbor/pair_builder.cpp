@@ -118,6 +118,7 @@ void PairBuilder::sort_by_cell(ParticleStore& p, const Settings& s) {
         perm_[cell_start_[c] + count_[c]++] = static_cast<std::uint32_t>(k);
     }
     p.for_each_column([&](auto& col) { permute_column(col, perm_, scratch_); });
+    if (p.has_materials()) p.for_each_material_column([&](auto& col) { permute_column(col, perm_, scratch_); });
     p.rebuild_slot_map();
     for (std::size_t c = 0; c < ncell; ++c)
         for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) cell_of_[k] = static_cast<std::uint32_t>(c);

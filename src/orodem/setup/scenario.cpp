@@ -44,9 +44,19 @@ LawParams with_damping_ratio(LawParams law, double zeta) {
     return law;
 }
 
+MaterialConfig governing_material(const Config& c) {
+    MaterialConfig m = c.material;
+    for (const NamedMaterial& nm : c.materials) {
+        m.density = std::min(m.density, nm.m.density);
+        m.k_n = std::max(m.k_n, nm.m.k_n);
+        m.k_s_over_k_n = std::max(m.k_s_over_k_n, nm.m.k_s_over_k_n);
+    }
+    return m;
+}
+
 double lightest_mass(const Config& c) {
     const double r = c.packing.kind == PackingKind::hexagonal ? c.packing.r_max : c.packing.r_min;
-    return c.material.density * std::numbers::pi * r * r;
+    return governing_material(c).density * std::numbers::pi * r * r;
 }
 
 double inertia_floor_mass(const Config& c) {
@@ -70,7 +80,7 @@ double lightest_inertial_mass(const Config& c) { return std::max(lightest_mass(c
 TimestepInfo timestep_for(const Config& c, bool with_floor) {
     try {
         const double m_min = with_floor ? lightest_inertial_mass(c) : lightest_mass(c);
-        return choose_timestep(m_min, make_law(c.material), c.numerics.dt, c.numerics.safety);
+        return choose_timestep(m_min, make_law(governing_material(c)), c.numerics.dt, c.numerics.safety);
     } catch (const ConfigError& e) {
         // Name the config key (SPEC §5); the physics layer does not know it.
         throw ConfigError(fmt::format("{}: key 'numerics.dt' = {:g}: {}", c.path, c.numerics.dt, e.what()));

@@ -16,6 +16,10 @@ LawParams make_law(const MaterialConfig& m);
 LawParams with_damping_ratio(LawParams law, double zeta);
 
 /// Mass of the lightest disc the packing can hold [kg].
+/// The material that bounds the timestep: [material], or with several
+/// materials (Config::materials) the least density and the largest k_n and
+/// k_s / k_n of [material] and every material (each a bound on its own).
+MaterialConfig governing_material(const Config& c);
 double lightest_mass(const Config& c);
 
 /// A wedge run's inertia floor, ρ π (wedge.inertia_floor r_min)² [kg]: free

@@ -12,12 +12,13 @@
 #include "orodem/boundary/fixed_retro.hpp"
 #include "orodem/core/angles.hpp"
 #include "orodem/core/error.hpp"
+#include "orodem/setup/layers.hpp"
 #include "orodem/setup/scenario.hpp"
 
 namespace orodem {
 
 double belt_speed_limit(const Config& c, double dt) {
-    return lightest_mass(c) * c.numerics.gravity / (c.material.k_n * dt);
+    return lightest_mass(c) * c.numerics.gravity / (governing_material(c).k_n * dt);
 }
 
 double belt_speed_limit(const Config& c) { return belt_speed_limit(c, timestep_for(c).dt); }
@@ -29,7 +30,7 @@ void check_belt_speed(const Config& c, double dt) {
         throw ConfigError(fmt::format(
             "{}: key 'wedge.v' = {:g}: must satisfy eq. 6, v' < m g / (k_n dt) = {:g} m/s "
             "(m = {:g} kg lightest disc, g = {:g}, k_n = {:g}, dt = {:g} s); lower wedge.v or material.k_n",
-            c.path, w.v, v_limit, lightest_mass(c), c.numerics.gravity, c.material.k_n, dt));
+            c.path, w.v, v_limit, lightest_mass(c), c.numerics.gravity, governing_material(c).k_n, dt));
 }
 
 void check_belt_speed(const Config& c) { check_belt_speed(c, timestep_for(c).dt); }
@@ -42,7 +43,7 @@ void check_base_dashpot(const Config& c, double dt) {
     // kept below 1 for a margin (the automatic dt gives about 0.12).
     const bool coulomb = (is_calibration(c) ? c.calibrate.base_law : c.wedge.base_law) == BaseLaw::coulomb;
     if (!coulomb) return;
-    const double k_s = c.material.k_n * c.material.k_s_over_k_n;
+    const double k_s = governing_material(c).k_n * governing_material(c).k_s_over_k_n;
     const double rate = 2.0 * kBaseDampingRatio * std::sqrt(k_s / lightest_inertial_mass(c)) * dt;
     if (!(rate < 1.0))
         throw ConfigError(fmt::format("{}: numerics.dt = {:g} s is too long for the Coulomb base's dashpot "
@@ -198,11 +199,13 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer, const RunNumb
     }
     sim.params.law = make_law(c.material);
     sim.params.dt = t.dt;
+    if (c.layered()) sim.materials = material_table(c);
     sim.params.gravity = {0.0, -c.numerics.gravity};
     sim.params.skin = c.numerics.skin;
     // The inertia floor (wedge.inertia_floor): light discs move with the
     // inertia of a disc of radius inertia_floor r_min; weights are unchanged.
     sim.params.m_inertia_min = inertia_floor_mass(c);
+    if (c.layered()) assign_layers(c, p);  // materials, layers and masses (setup/layers.cpp)
     if (sim.params.m_inertia_min > 0.0)
         for (std::size_t s = 0; s < p.size(); ++s)
             if (!(p.flags[s] & (kFlagFixed | kFlagAsleep))) p.set_free_inertia(s, sim.params.m_inertia_min);

@@ -23,6 +23,11 @@ std::size_t ParticleStore::add(Vec2 pos, double r, double density, std::int32_t 
     flags.push_back(0);
     initial_depth.push_back(0.0);
     side.push_back(0);
+    if (has_materials()) {
+        material.push_back(0);
+        layer.push_back(0);
+        damage.push_back(0.0);
+    }
     slot_of_id.push_back(static_cast<std::uint32_t>(slot));
     return slot;
 }
@@ -33,12 +38,14 @@ void ParticleStore::rebuild_slot_map() {
 }
 
 void ParticleStore::compact(const std::vector<std::uint8_t>& keep) {
-    for_each_column([&](auto& col) {
+    auto keep_slots = [&](auto& col) {
         std::size_t w = 0;
         for (std::size_t s = 0; s < col.size(); ++s)
             if (keep[s]) col[w++] = col[s];
         col.resize(w);
-    });
+    };
+    for_each_column(keep_slots);
+    if (has_materials()) for_each_material_column(keep_slots);
     // Dense renumbering keeps ids usable as array indices.
     std::unordered_map<std::int32_t, std::int32_t> cluster_map;
     for (std::size_t s = 0; s < size(); ++s) {

@@ -38,6 +38,12 @@ struct ParticleStore {
     std::vector<std::uint8_t> flags;   // ParticleFlag bits
     std::vector<double> initial_depth; // depth below the layer top when the layer was cut [m]
     std::vector<std::uint8_t> side;    // 0 proside, 1 retroside (SPEC §4)
+    // Materials (physics/materials.hpp): empty unless the run has layers
+    // (Simulation::materials), so a one-material run's state, checkpoints and
+    // outputs hold none of them.
+    std::vector<std::uint8_t> material; // material id (MaterialTable::materials)
+    std::vector<std::uint8_t> layer;    // layer id: the incoming plate's layers from the base up, then the retroside's
+    std::vector<double> damage;         // D: sliding distance of the particle's contacts [mean disc diameters]
 
     std::vector<std::uint32_t> slot_of_id;  // id -> current slot
 
@@ -54,6 +60,17 @@ struct ParticleStore {
         fn(inv_inertia); fn(force); fn(torque); fn(id); fn(cluster); fn(flags);
         fn(initial_depth); fn(side);
     }
+    /// The material columns (empty in a one-material run): permuted and
+    /// compacted with the others, saved in their own checkpoint section.
+    template <class F>
+    void for_each_material_column(F&& fn) {
+        fn(material); fn(layer); fn(damage);
+    }
+    template <class F>
+    void for_each_material_column(F&& fn) const {
+        fn(material); fn(layer); fn(damage);
+    }
+    bool has_materials() const { return !material.empty(); }
     template <class F>
     void for_each_column(F&& fn) const {
         const_cast<ParticleStore*>(this)->for_each_column(

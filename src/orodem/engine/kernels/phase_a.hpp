@@ -37,17 +37,31 @@
 
 namespace orodem {
 namespace {
+/// A lane policy O with the pair's law taken from the pair columns
+/// (PairKernelData::k_n_pair ..., several materials) instead of the one
+/// LawParams, and the pair's plastic slip and separations recorded. The
+/// same expressions with a lane's value where the one law has a scalar, so
+/// a run whose columns all hold the one law's values gives the same bits.
+template <class O>
+struct PerPair : O {
+    static constexpr bool kPerPair = true;
+};
+template <class O>
+constexpr bool per_pair = requires { O::kPerPair; };
+
 /// The inputs of O::n pairs, one pair per lane.
 template <class O>
 struct Block {
     using V = typename O::V;
     V xix, xiy, xjx, xjy, shift, ri, rj, bonded, gamma_n, gamma_s, vix, viy, vjx, vjy, wi, wj, xi_x, xi_y;
+    V k_n, k_s, mu, cohesion;  // PerPair only: the pair's law
 };
 /// The outputs.
 template <class O>
 struct Out {
     using V = typename O::V;
     V fx, fy, c, xi_x, xi_y;
+    V slip, broke;  // PerPair only: plastic slip this step [m]; 1 where a pair with history separated
 };
 
 /// Loads a block; `K` are the pair indices of the lanes.
@@ -99,6 +113,19 @@ template <class O>
         b.ri = O::lanes([&](std::size_t l) { return d.r_i[K[l]]; });
         b.rj = O::lanes([&](std::size_t l) { return d.r_j[K[l]]; });
     }
+    if constexpr (per_pair<O>) {
+        if (contiguous) {
+            b.k_n = simd::load<V>(d.k_n_pair + K[0]);
+            b.k_s = simd::load<V>(d.k_s_pair + K[0]);
+            b.mu = simd::load<V>(d.mu_pair + K[0]);
+            b.cohesion = simd::load<V>(d.cohesion_pair + K[0]);
+        } else {
+            b.k_n = O::lanes([&](std::size_t l) { return d.k_n_pair[K[l]]; });
+            b.k_s = O::lanes([&](std::size_t l) { return d.k_s_pair[K[l]]; });
+            b.mu = O::lanes([&](std::size_t l) { return d.mu_pair[K[l]]; });
+            b.cohesion = O::lanes([&](std::size_t l) { return d.cohesion_pair[K[l]]; });
+        }
+    }
     return b;
 }
 
@@ -111,6 +138,7 @@ struct Law {
     using M = typename O::M;
     M touch, slide;
     V nx, ny, f_n, ftx, fty, xi_x, xi_y, f_max, vtx, vty, gamma_s;
+    V k_s, slip, broke;  // PerPair only
 };
 
 /// The law for the lanes: eval_contact() and the scalar loop, operation for
@@ -142,7 +170,17 @@ template <class O>
     w.vtx = (vrx - v_n * nx) + spin * ny;
     w.vty = (vry - v_n * ny) + spin * (-nx);
     const V gamma_n = b.gamma_n;  // from the masses, per pair (pair_dashpots)
-    V f_n = p.k_n * delta - gamma_n * v_n;
+    V f_n;
+    if constexpr (per_pair<O>) {
+        f_n = b.k_n * delta - gamma_n * v_n;
+        w.k_s = b.k_s;
+        w.slip = V{};
+        // A pair that had a history (touched last step) and no longer touches.
+        const M had = O::or_(O::nonzero(b.xi_x), O::nonzero(b.xi_y));
+        w.broke = O::keep(O::and_not(w.touch, had), V{} + 1.0);
+    } else {
+        f_n = p.k_n * delta - gamma_n * v_n;
+    }
     if (p.clamp_normal) f_n = O::select(O::and_not(bonded, O::lt(f_n, V{})), V{}, f_n);
     w.f_n = f_n;
 
@@ -161,9 +199,15 @@ template <class O>
         const V along = xi_x * nx + xi_y * ny;
         w.xi_x = xi_x - along * nx;
         w.xi_y = xi_y - along * ny;
-        w.ftx = (-p.k_s) * w.xi_x - w.gamma_s * w.vtx;
-        w.fty = (-p.k_s) * w.xi_y - w.gamma_s * w.vty;
-        w.f_max = p.mu * O::fabs(f_n) + p.cohesion;
+        if constexpr (per_pair<O>) {
+            w.ftx = (-b.k_s) * w.xi_x - w.gamma_s * w.vtx;
+            w.fty = (-b.k_s) * w.xi_y - w.gamma_s * w.vty;
+            w.f_max = b.mu * O::fabs(f_n) + b.cohesion;
+        } else {
+            w.ftx = (-p.k_s) * w.xi_x - w.gamma_s * w.vtx;
+            w.fty = (-p.k_s) * w.xi_y - w.gamma_s * w.vty;
+            w.f_max = p.mu * O::fabs(f_n) + p.cohesion;
+        }
         const V ft2 = w.ftx * w.ftx + w.fty * w.fty;
         w.slide = O::and_not(bonded, O::gt(ft2, w.f_max * w.f_max));
     }
@@ -179,8 +223,18 @@ template <class O>
     const V ratio = w.f_max / O::sqrt(w.ftx * w.ftx + w.fty * w.fty);
     // γ_s / k_s: +0 exactly when there is no tangential dashpot (then no division).
     const bool no_dashpot = zero_gamma_s(p) && p.k_s > 0.0;
-    const V g_over_k = no_dashpot ? V{} : w.gamma_s / p.k_s;
+    V g_over_k;
+    if constexpr (per_pair<O>)
+        g_over_k = no_dashpot ? V{} : w.gamma_s / w.k_s;
+    else
+        g_over_k = no_dashpot ? V{} : w.gamma_s / p.k_s;
     const V dpx = g_over_k * w.vtx, dpy = g_over_k * w.vty;
+    if constexpr (per_pair<O>) {
+        // The plastic part of this step's tangential displacement: what the
+        // rescaling takes off |ξ + dashpot part|.
+        const V ex = w.xi_x + dpx, ey = w.xi_y + dpy;
+        w.slip = O::keep(w.slide, (1.0 - ratio) * O::sqrt(ex * ex + ey * ey));
+    }
     w.xi_x = O::select(w.slide, ratio * (w.xi_x + dpx) - dpx, w.xi_x);
     w.xi_y = O::select(w.slide, ratio * (w.xi_y + dpy) - dpy, w.xi_y);
     w.ftx = O::select(w.slide, ratio * w.ftx, w.ftx);
@@ -195,6 +249,10 @@ template <class O>
     o.c = O::keep(w.touch, w.nx * w.fty - w.ny * w.ftx);
     o.xi_x = O::keep(w.touch, w.xi_x);  // history starts afresh at the next touch
     o.xi_y = O::keep(w.touch, w.xi_y);
+    if constexpr (per_pair<O>) {
+        o.slip = w.slip;
+        o.broke = w.broke;
+    }
     return o;
 }
 
@@ -204,6 +262,16 @@ template <class O>
     Law<O> w = law_to_slide<O>(d, b);
     if (d.law.tangential && O::any(w.slide)) slide_step<O>(d.law, w);
     return outputs<O>(w);
+}
+
+/// PerPair: adds the lanes' plastic slip to the pairs' slip and marks the
+/// separated ones (lanes 0 .. valid - 1 at pairs k0 ..).
+template <class O>
+[[gnu::always_inline]] inline void record_slip(const PairKernelData& d, std::size_t k0, std::size_t valid, const Out<O>& o) {
+    for (std::size_t l = 0; l < valid; ++l) {
+        d.slip[k0 + l] += o.slip[l];
+        if (o.broke[l] != 0.0) d.broke[k0 + l] = 1;
+    }
 }
 
 /// Stores a block's outputs at pairs k0 .. k0 + O::n - 1.
@@ -216,6 +284,7 @@ template <class O>
     if (d.update_history) {
         simd::store(d.xi + k0, O::zip_lo(o.xi_x, o.xi_y));
         simd::store(d.xi + k0 + n / 2, O::zip_hi(o.xi_x, o.xi_y));
+        if constexpr (per_pair<O>) record_slip<O>(d, k0, n, o);
     }
 }
 
@@ -267,6 +336,11 @@ template <class O>
     rec.w.vtx = w.vtx;  // (+0 / k_s) v_t is ±0 by v_t's sign: kept even without a dashpot
     rec.w.vty = w.vty;
     if (keep_dashpot) rec.w.gamma_s = w.gamma_s;
+    if constexpr (per_pair<O>) {
+        rec.w.k_s = w.k_s;
+        rec.w.slip = w.slip;
+        rec.w.broke = typename O::V{};  // recorded by the store above; the store after the sliding step adds only the slip
+    }
     return O::any(w.slide);
 }
 
@@ -306,10 +380,12 @@ template <class O>
         d.c[k] = o.c[l];
         if (d.update_history) d.xi[k] = {o.xi_x[l], o.xi_y[l]};
     }
+    if constexpr (per_pair<O>)
+        if (d.update_history) record_slip<O>(d, k0, valid, o);
 }
 
 template <class O>
-[[gnu::always_inline]] inline void pair_body(const PairKernelData& dref, std::size_t begin, std::size_t end) {
+[[gnu::always_inline]] inline void pair_body_law(const PairKernelData& dref, std::size_t begin, std::size_t end) {
     // A local copy: the kernel's stores (memcpy, may alias anything) then
     // cannot force reloads of the column pointers.
     const PairKernelData d = dref;
@@ -319,6 +395,16 @@ template <class O>
     else
         for (; k + O::n <= end; k += O::n) eval_block<O>(d, k);
     if (k < end) eval_tail<O>(d, k, end - k);
+}
+
+/// Phase A over pairs [begin, end): the one law, or the pair columns' laws
+/// when the run has several materials (PairKernelData::k_n_pair).
+template <class O>
+[[gnu::always_inline]] inline void pair_body(const PairKernelData& d, std::size_t begin, std::size_t end) {
+    if (d.k_n_pair)
+        pair_body_law<PerPair<O>>(d, begin, end);
+    else
+        pair_body_law<O>(d, begin, end);
 }
 }  // namespace
 }  // namespace orodem

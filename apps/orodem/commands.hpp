@@ -41,6 +41,10 @@ int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& o
 /// each run's own run.threads (with jobs > 1: the cores shared among the jobs).
 /// --scheduler slurm: the unfinished members submitted again as a job array.
 int cmd_resume(const std::string& dir, int threads, int jobs = 1, const SchedulerArgs& s = {});
+/// orodem resume DIR --s-max S (cmd_run.cpp): the wedge run in DIR extended to
+/// S on the same incoming plate (run/runner.hpp extend_run); a refusal (exit
+/// 2) changes nothing.
+int cmd_extend(const std::string& dir, double s_max, int threads);
 /// The hidden `orodem sweep-member DIR`: one member of a parallel sweep, run
 /// or continued in the child process that the sweep started for it (or in
 /// its Slurm array task).

@@ -103,6 +103,13 @@ int main(int argc, char** argv) {
                                                   "shared among them unless --threads is given")
         ->check(CLI::Range(1, 256))
         ->capture_default_str();
+    double resume_s_max = std::nan("");
+    auto* resume_s_max_opt =
+        resume_cmd->add_option("--s-max", resume_s_max, "Extend a run (finished or not) to this S on the same incoming "
+                                                        "plate: wedge.s_max = S, wedge.pro_margin shortened by as "
+                                                        "much; refused (nothing changed) when the plate is too short")
+            ->check(CLI::Range(0.0, 100.0))
+            ->check(kFinite);
     SchedulerArgs resume_sched;
     resume_sched.slurm.cpus_per_task = 0;  // as in DIR/slurm/array.sh
     add_scheduler_options(resume_cmd, resume_sched, "the CPUs of each array task (default: as in DIR/slurm/array.sh)");
@@ -266,6 +273,12 @@ int main(int argc, char** argv) {
     }
     try {
         if (*run) return cmd_run(run_args, out, resume);
+        if (*resume_cmd && resume_s_max_opt->count() > 0) {
+            if (resume_jobs != 1 || resume_sched.scheduler != "local" || resume_sched.slurm_given)
+                throw ConfigError("--s-max extends one run on this machine; --jobs and the Slurm options are for "
+                                  "a sweep's folder");
+            return cmd_extend(resume_dir, resume_s_max, resume_args.threads);
+        }
         if (*resume_cmd) return cmd_resume(resume_dir, resume_args.threads, resume_jobs, resume_sched);
         if (*settle) return cmd_sweep_settle(settle_dir, settle_threads);
         if (*member) return cmd_sweep_member(member_dir, member_threads);

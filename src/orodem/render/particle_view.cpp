@@ -142,7 +142,12 @@ void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layou
     const ParticleStore& p = *panel.p;
     c.clip(x0, top, L.plot_w, L.plot_h);
     bool cut_above = false;  // material reaching over the frame's top edge
-    for (std::size_t s = 0; s < p.size(); ++s) {
+    // In id order (the order of a snapshot's discs), so that a picture drawn
+    // again from a snapshot (orodem render, orodem resume --s-max) lays the
+    // discs' antialiased edges over each other as the run did.
+    const bool by_id = p.slot_of_id.size() == p.size();
+    for (std::size_t k = 0; k < p.size(); ++k) {
+        const std::size_t s = by_id ? p.slot_of_id[k] : k;
         const double x = p.x[s].x, y = p.x[s].y, r = p.radius[s];
         if (x + r < o.x_min || x - r > o.x_max || y + r < o.y_min) continue;
         cut_above = cut_above || y + r > o.y_max;

@@ -48,7 +48,9 @@ Frame read_frame(const SavedRun& run, std::size_t k) {
     if (k == 0) return f;  // no previous output to move from
     // Slots follow file order (p.add), so the arrays apply as they are.
     if (const auto* abs = d.find("rel_disp_abs")) {
-        const double interval = (run.snaps[k].S - run.snaps[k - 1].S) * run.config.h0;  // [m]
+        const bool exact = run.S_exact.size() == run.snaps.size();  // else run.pvd's S, to 6 decimals
+        const double interval = exact ? (run.S_exact[k] - run.S_exact[k - 1]) * run.config.h0
+                                      : (run.snaps[k].S - run.snaps[k - 1].S) * run.config.h0;  // [m]
         f.displacement.assign(abs->size(), 0.0);
         if (interval > 0.0)
             for (std::size_t i = 0; i < abs->size(); ++i) f.displacement[i] = (*abs)[i] / interval;

@@ -33,6 +33,8 @@ struct SavedRun {
     std::string dir;
     ConfigBasics config;
     std::vector<Snapshot> snaps;
+    std::vector<double> S_exact;  // the outputs' S as the run computed them (a checkpoint's list), when known:
+                                  // read_frame's displacement then matches the run's to the bit; else empty
 };
 /// Reads RUN_DIR/config.toml (leniently) and RUN_DIR/run.pvd.
 SavedRun open_saved_run(const std::string& dir);

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <sstream>
@@ -19,7 +20,9 @@
 #include "orodem/physics/stability.hpp"
 #include "orodem/run/run_dir.hpp"
 #include "orodem/run/run_log.hpp"
+#include "orodem/run/run_faults.hpp"
 #include "orodem/run/wedge_run.hpp"
+#include "orodem/render/run_figures.hpp"
 #include "orodem/setup/packing.hpp"
 #include "orodem/setup/scenario.hpp"
 #include "orodem/setup/wedge.hpp"
@@ -216,15 +219,11 @@ int start_run_in(const Config& c, const RunNumbers& n, const std::string& dir, R
     return start_wedge(c, n, dir, log, obs);
 }
 
-int resume_run(const Config& c, const RunNumbers& n, const std::string& dir, RunObserver& obs) {
-    if (dir.empty())
-        throw ConfigError("--resume needs --out DIR: the run directory to continue (it holds config.toml and checkpoint/)");
-    if (!is_wedge(c))
-        throw ConfigError(fmt::format("--resume: run.experiment = \"{}\" writes no checkpoints; only the wedge "
-                                      "experiments can be resumed", c.run.experiment));
-    if (!fs::exists(dir + "/config.toml"))
-        throw ConfigError(fmt::format("--resume --out {}: no config.toml there; give the directory of the run to continue", dir));
-    const DirLock lock = lock_dir(dir, "the run directory");  // one writer (io/files.hpp); held to the end
+namespace {
+
+/// resume_run once the run directory is locked; `how` (when not empty) starts the resume line of log.txt.
+int resume_locked(const Config& c, const RunNumbers& n, const std::string& dir, RunObserver& obs,
+                  const std::string& how = "") {
     const Config saved = load_config(dir + "/config.toml");
     if (config_hash(saved) != config_hash(c))
         throw ConfigError(fmt::format("--resume --out {}: {} differs from the run's config ({}); resume with "
@@ -294,13 +293,133 @@ int resume_run(const Config& c, const RunNumbers& n, const std::string& dir, Run
     e.kind = RunEvent::resume;
     e.step = w.sim.step_count;
     e.S = c.wedge.v * w.sim.time / c.packing.h0;
-    e.text = fmt::format("resumed by orodem {} from {} at step {} (S = {:.4f}) with {} threads, {} step kernels",
-                         ORODEM_VERSION, path, w.sim.step_count, e.S, omp_get_max_threads(), isa_name(kernel_isa()));
+    e.text = fmt::format("{}resumed by orodem {} from {} at step {} (S = {:.4f}) with {} threads, {} step kernels",
+                         how.empty() ? "" : how + "; ", ORODEM_VERSION, path, w.sim.step_count, e.S, omp_get_max_threads(), isa_name(kernel_isa()));
     log.event(e);
     obs.note(fmt::format("resuming {} from step {} ({})", dir, w.sim.step_count, path));
     const int rc = run_wedge(c, w, dir, log, obs, &st);
     if (rc == 0) obs.note(fmt::format("outputs in {}/ (config.toml, log.txt, series.csv)", dir));
     return rc;
+}
+
+}  // namespace
+
+int resume_run(const Config& c, const RunNumbers& n, const std::string& dir, RunObserver& obs) {
+    if (dir.empty())
+        throw ConfigError("--resume needs --out DIR: the run directory to continue (it holds config.toml and checkpoint/)");
+    if (!is_wedge(c))
+        throw ConfigError(fmt::format("--resume: run.experiment = \"{}\" writes no checkpoints; only the wedge "
+                                      "experiments can be resumed", c.run.experiment));
+    if (!fs::exists(dir + "/config.toml"))
+        throw ConfigError(fmt::format("--resume --out {}: no config.toml there; give the directory of the run to continue", dir));
+    const DirLock lock = lock_dir(dir, "the run directory");  // one writer (io/files.hpp); held to the end
+    return resume_locked(c, n, dir, obs);
+}
+
+namespace {
+
+/// The plate left ahead of the trailing wall at S when the incoming plate is
+/// `plate` h0 beyond the S point at the start (s_max + pro_margin), and the
+/// least that plate_estimate asks for at S [h0].
+struct PlateAtS {
+    double left = 0.0, needed = 0.0;
+    bool enough() const { return left >= needed; }
+};
+PlateAtS plate_at(const Config& saved, double plate, double S) {
+    Config at = saved;
+    at.wedge.s_max = S;
+    return {plate - S, plate_estimate(at).pro_margin_min};
+}
+
+}  // namespace
+
+std::vector<Override> extension_overrides(const Config& saved, double S, const std::string& dir) {
+    const WedgeConfig& w = saved.wedge;
+    const std::string cmd = fmt::format("orodem resume {} --s-max {:g}", dir, S);
+    if (!is_wedge(saved))
+        throw ConfigError(fmt::format("{}: run.experiment = \"{}\" is no wedge run; only those can be extended", cmd,
+                                      saved.run.experiment));
+    const auto outputs = [&](double s) { return std::max(1LL, std::llround(s / w.output_ds)); };
+    if (!std::isfinite(S) || outputs(S) <= outputs(w.s_max))
+        throw ConfigError(fmt::format("{}: the run goes to S = {:g} already; --s-max must reach at least one output "
+                                      "interval (wedge.output_ds = {:g}) beyond it; nothing was changed",
+                                      cmd, w.s_max, w.output_ds));
+    const double plate = w.s_max + w.pro_margin;  // [h0] beyond the S point at the start
+    // pro_margin such that s_max + pro_margin is the same double: the same
+    // packing.length, the same discs, the same walls.
+    double pro_margin = plate - S;
+    for (int i = 0; i < 4 && S + pro_margin != plate; ++i)
+        pro_margin = std::nextafter(pro_margin, S + pro_margin < plate ? 1e300 : -1e300);
+    const PlateAtS at = plate_at(saved, plate, S);
+    if (S + pro_margin != plate || !at.enough() || pro_margin <= 2.0) {
+        // The largest S this plate allows, to 0.01 (bisection between the run's s_max and the plate).
+        double lo = w.s_max, hi = plate;
+        if (plate_at(saved, plate, lo).enough())
+            for (int i = 0; i < 60; ++i) {
+                const double mid = 0.5 * (lo + hi);
+                (plate_at(saved, plate, mid).enough() && plate - mid > 2.0 ? lo : hi) = mid;
+            }
+        const double most = std::floor(lo * 100.0) / 100.0;
+        throw ConfigError(fmt::format(
+            "{}: the run's incoming plate is {:g} h0 long (wedge.s_max + wedge.pro_margin = {:g} + {:g}; packing.length "
+            "= {:g} m with the retroside); at S = {:g} it would leave {:.2f} h0 ahead of the trailing wall, less than "
+            "the {:.2f} h0 the deformation front may need (docs/experiments.md \"Plate length\"){}; start a new run "
+            "with wedge.s_max = {:g} from your config file instead; nothing was changed",
+            cmd, plate, w.s_max, w.pro_margin, saved.packing.length, S, at.left, std::max(at.needed, 2.0),
+            most > w.s_max ? fmt::format("; this plate can be extended to S = {:g} at most", most)
+                           : std::string("; this plate cannot be extended"),
+            S));
+    }
+    return {{"wedge.s_max", fmt::format("{}", S)}, {"wedge.pro_margin", fmt::format("{}", pro_margin)}};
+}
+
+int extend_run(const Config& saved, const Config& c, const RunNumbers& n, const std::string& dir, RunObserver& obs) {
+    const DirLock lock = lock_dir(dir, "the run directory");  // one writer (io/files.hpp); held to the end
+    if (list_checkpoints(dir + "/checkpoint").empty())
+        throw ConfigError(fmt::format("orodem resume {} --s-max {:g}: no checkpoint in {}/checkpoint/ to continue "
+                                      "from; nothing was changed",
+                                      dir, c.wedge.s_max, dir));
+    // The newest checkpoint, made with the run's config (or with c's, when an
+    // extension stopped between its first two writes), written again with
+    // c's hash so that a plain resume of the extended run takes it.
+    RunLoopState st;
+    {
+        WedgeSetup w = make_wedge(c, ParticleStore{}, n);
+        try {
+            restore_newest_checkpoint(dir + "/checkpoint", AcceptedHashes{config_hash(c), config_hash(saved)}, w.sim,
+                                      st);
+        } catch (const CheckpointError& e) {
+            throw ConfigError(fmt::format("orodem resume {} --s-max {:g}: {}; nothing was changed", dir,
+                                          c.wedge.s_max, e.what()));
+        }
+        write_checkpoint(dir + "/checkpoint", w.sim.step_count, encode_checkpoint(w.sim, st, config_hash(c)));
+    }
+    write_file_atomic(dir + "/config.toml", to_toml(c));
+    // The pictures written so far, in the frame of the extended run (taller,
+    // its trailing wall further on), from their snapshots as orodem render
+    // draws them.
+    SavedRun run = open_saved_run(dir);
+    if (st.pvd.size() == run.snaps.size())
+        for (const auto& [S, file] : st.pvd) run.S_exact.push_back(S);
+    const ViewOptions view = run_view(config_basics(c));
+    bool strain = false;
+    for (std::size_t k = 1; k < run.snaps.size() && !strain; ++k) strain = has_colour_data(run, k, ColorBy::strain);
+    const RunFaultLines faults = strain ? run_fault_lines(run_faults(dir), run.snaps, c.packing.h0) : RunFaultLines{};
+    for (std::size_t k = 0; k < run.snaps.size(); ++k) {
+        const Frame f = read_frame(run, k);
+        ViewOptions v = view;
+        v.per_frame_scale = f.per_frame_scale;
+        const bool has_strain = k > 0 && f.strain.size() == f.p.size() && k < faults.size();
+        const Panel panel = has_strain ? frame_panel(f, ColorBy::strain, &faults[k]) : frame_panel(f, ColorBy::horizons, nullptr);
+        render_output_pictures(panel, v, dir + "/figures", fs::path(run.snaps[k].file).stem().string());
+    }
+    const std::string how = fmt::format(
+        "extended from wedge.s_max = {:g} to {:g} on the same plate (wedge.pro_margin {:g} -> {:g}), the {} pictures "
+        "so far drawn again in the extended run's frame",
+        saved.wedge.s_max, c.wedge.s_max, saved.wedge.pro_margin, c.wedge.pro_margin, run.snaps.size());
+    obs.note(fmt::format("extending {} from S = {:g} to S = {:g} (wedge.pro_margin {:g} -> {:g}, the plate unchanged)",
+                         dir, saved.wedge.s_max, c.wedge.s_max, saved.wedge.pro_margin, c.wedge.pro_margin));
+    return resume_locked(c, n, dir, obs, how);
 }
 
 void ensure_packing_cached(const Config& c, const std::string& dir, RunObserver& obs) {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "orodem/io/config.hpp"
 #include "orodem/run/observer.hpp"
@@ -30,6 +31,23 @@ int start_run_in(const Config& c, const RunNumbers& n, const std::string& dir, R
 /// Continues the wedge run in dir from its newest usable checkpoint (from the
 /// beginning when it was stopped before its first); c must be its config.
 int resume_run(const Config& c, const RunNumbers& n, const std::string& dir, RunObserver& obs);
+/// The --set overrides that extend a wedge run with config `saved` to
+/// s_max = S on the same incoming plate (orodem resume DIR --s-max S):
+/// wedge.s_max = S and wedge.pro_margin = saved's s_max + pro_margin − S, so
+/// that s_max + pro_margin, packing.length and every disc stay as they are
+/// and the run continues as one made with them from the start. Throws
+/// ConfigError (one line naming the plate length) when S is not beyond the
+/// run's s_max by one output interval at least, or when the plate left ahead
+/// of the trailing wall at S would be shorter than plate_estimate's
+/// pro_margin_min (docs/experiments.md "Plate length").
+std::vector<Override> extension_overrides(const Config& saved, double S, const std::string& dir);
+/// Continues the wedge run in dir (its config.toml is `saved`) as the run of
+/// c, saved with extension_overrides applied: the newest checkpoint
+/// restored (made with saved's config or c's), written again with c's
+/// config hash, c written as config.toml, the pictures of the outputs so far
+/// drawn again from their snapshots in c's frame, then resumed as
+/// resume_run. Nothing is changed when it throws before the first write.
+int extend_run(const Config& saved, const Config& c, const RunNumbers& n, const std::string& dir, RunObserver& obs);
 /// Settles c's layer into its packing cache unless it is there already; the
 /// log lines go to dir/log.txt (and dir/events.csv).
 void ensure_packing_cached(const Config& c, const std::string& dir, RunObserver& obs);

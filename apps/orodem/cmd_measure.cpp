@@ -3,6 +3,8 @@
 // columns of series.csv that a snapshot determines (run/series_columns.hpp),
 // in the same formats, so they can be compared with the run's own rows. The
 // belt's decoupling point comes from each snapshot and the one before it.
+// Given a sweep's folder: every member's rows in one table, in the sweep's
+// order, after a first column `run` naming the member's folder.
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -17,6 +19,7 @@
 #include "orodem/io/vtu_writer.hpp"
 #include "orodem/run/run_dir.hpp"
 #include "orodem/run/series_columns.hpp"
+#include "orodem/run/sweep.hpp"
 #include "orodem/setup/wedge.hpp"
 
 #include "commands.hpp"
@@ -24,7 +27,10 @@
 namespace fs = std::filesystem;
 namespace orodem {
 
-int cmd_measure(const std::string& run_dir) {
+namespace {
+
+/// The measures of the run in run_dir, one line each, after `prefix`; the header first when `header`.
+void measure_run(const std::string& run_dir, const std::string& prefix, bool header) {
     require_run_dir(run_dir);
     const fs::path dir(run_dir);
     const Config c = load_config((dir / "config.toml").string());
@@ -40,7 +46,7 @@ int cmd_measure(const std::string& run_dir) {
                                   (dir / "run.pvd").string(), snaps.front().S));
     ProfileParams pp = wedge_profile_params(c);
     const double h0 = c.packing.h0;
-    fmt::print("{}\n", series_header(true));
+    if (header) fmt::print("{}{}\n", prefix.empty() ? "" : "run,", series_header(true));
     std::vector<Vec2> x_then;  // the previous snapshot's positions and radii by disc id
     std::vector<double> r_then;
     for (std::size_t k = 0; k < snaps.size(); ++k) {
@@ -62,7 +68,35 @@ int cmd_measure(const std::string& run_dir) {
                                                      kDecouplingBinOverH0 * h0);
         x_then = std::move(x_now);
         r_then = std::move(r_now);
-        fmt::print("{}\n", series_line(r, static_cast<std::size_t>(-1), true));
+        fmt::print("{}{}\n", prefix, series_line(r, static_cast<std::size_t>(-1), true));
+    }
+}
+
+}  // namespace
+
+int cmd_measure(const std::string& run_dir) {
+    bool manifest = false;
+    const std::vector<std::string> members =
+        fs::exists(fs::path(run_dir) / "config.toml") ? std::vector<std::string>{} : sweep_folders(run_dir, manifest);
+    if (members.empty()) {
+        measure_run(run_dir, "", true);
+        return 0;
+    }
+    // A sweep's folder: the members that have snapshots; the others are named on stderr.
+    bool header = true;
+    for (const std::string& m : members) {
+        if (!fs::exists(fs::path(m) / "run.pvd")) {
+            fmt::print(stderr, "orodem: measure: {} has no snapshots yet (not started); left out\n", m);
+            continue;
+        }
+        std::string name = fs::path(m).filename().string();
+        if (name.find_first_of(",\"") != std::string::npos) {  // a CSV cell
+            std::string q = "\"";
+            for (char ch : name) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+            name = q + "\"";
+        }
+        measure_run(m, name + ",", header);
+        header = false;
     }
     return 0;
 }

@@ -59,6 +59,17 @@ TEST(Sweep, OneRunPerValueReusingTheLayerThenPlots) {
     EXPECT_NE(slurp(dir / "sw" / "wedge.mu_bp=0.1" / "log.txt").find("settling a new packing"), std::string::npos);
     EXPECT_NE(slurp(dir / "sw" / "wedge.mu_bp=0.5" / "log.txt").find("packing reused"), std::string::npos);
     EXPECT_TRUE(fs::exists(dir / "sw" / "plots.png"));
+    // Progress: "run k of n" as each starts, then the runs done and the time left.
+    EXPECT_NE(out.find("sweep: wedge.mu_bp = 0.1 (run 1 of 2) -> "), std::string::npos) << out;
+    EXPECT_NE(out.find("sweep: wedge.mu_bp = 0.5 (run 2 of 2) -> "), std::string::npos) << out;
+    EXPECT_NE(out.find("sweep: 1 of 2 runs done, 1 to go: about "), std::string::npos) << out;
+    EXPECT_EQ(out.find("2 of 2 runs done"), std::string::npos) << out;
+    // orodem measure on the sweep's folder: every member's rows, named in a first column.
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " measure " + (dir / "sw").string() + " 2>/dev/null", &out), 0) << out;
+    EXPECT_EQ(out.rfind("run,S,H_over_h0,", 0), 0u) << out;
+    EXPECT_NE(out.find("\nwedge.mu_bp=0.1,0.000000,"), std::string::npos) << out;
+    EXPECT_NE(out.find("\nwedge.mu_bp=0.5,0.500"), std::string::npos) << out;
+    EXPECT_EQ(count_lines(out), 1 + 2 * 3) << out;  // S = 0, 0.25, 0.5 each
     // orodem status on the sweep's folder: each member, both finished.
     ASSERT_EQ(run(std::string(ORODEM_EXE) + " status " + (dir / "sw").string(), &out), 0) << out;
     EXPECT_NE(out.find("run: " + (dir / "sw" / "wedge.mu_bp=0.1").string()), std::string::npos) << out;

@@ -227,8 +227,13 @@ TEST(SweepLib, InChildProcessesEachMemberRunsOnceAndAnUnstableOneIsNamed) {
     KeptLines kept;
     EXPECT_EQ(run_sweep(s, LocalJobs{1, 2, (t.path / "member").string()}, kept), 3);
     const std::string text = kept.text();
-    EXPECT_HAS(text, "sweep: packing.seed = 1 -> " + s.dirs[0] + " (starting, 1 thread; its output in " + s.dirs[0] +
-                         "/console.txt)");
+    EXPECT_HAS(text, "sweep: packing.seed = 1 (run 1 of 4) -> " + s.dirs[0] + " (starting, 1 thread; its output in " +
+                         s.dirs[0] + "/console.txt)");
+    EXPECT_HAS(text, "sweep: packing.seed = 3 (run 3 of 4) -> ");
+    // After each run that ends, but the last: the runs done and the time left at the pace so far.
+    EXPECT_HAS(text, " runs done, ");
+    EXPECT_HAS(text, " to go: about ");
+    EXPECT_HAS(text, " more at this sweep's pace so far (");
     EXPECT_HAS(text, "sweep: packing.seed = 1: finished\n");
     EXPECT_HAS(text, "sweep: packing.seed = 2: ended with exit status 3 (see " + s.dirs[1] + "/console.txt)");
     EXPECT_HAS(text, "sweep: packing.seed = 3: finished\n");

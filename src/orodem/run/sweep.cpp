@@ -36,15 +36,52 @@ void use_member_threads(const Config& c) {
     if (c.run.threads > 0) omp_set_num_threads(c.run.threads);
 }
 
-/// Runs, continues or keeps one member in this process; its exit status (0 when kept).
-int run_member(const Config& c, const std::string& dir, const std::string& label, SweepObserver& obs) {
+/// "42 s", "17 min" or "3.5 h".
+std::string rough_duration(double secs) {
+    if (secs < 120.0) return fmt::format("{:.0f} s", secs);
+    if (secs < 7200.0) return fmt::format("{:.0f} min", secs / 60.0);
+    return fmt::format("{:.1f} h", secs / 3600.0);
+}
+
+/// A sweep's progress over its members: "run k of n" as each starts, and
+/// after each that ends here, the runs done and the time left for the rest
+/// at this process's pace so far (wall time since it began over the runs it
+/// ran, kept ones not counted; with --jobs J that pace is J runs at a time).
+class SweepProgress {
+public:
+    explicit SweepProgress(std::size_t n) : n_(n), t0_(std::chrono::steady_clock::now()) {}
+    /// "run k of n" of member k (0-based).
+    std::string position(std::size_t k) const { return fmt::format("run {} of {}", k + 1, n_); }
+    /// Member k was kept (finished or failed before): not counted in the pace.
+    void kept() { ++kept_; }
+    /// A member run here has ended: the line to say, "" when none is left.
+    std::string ended() {
+        ++ran_;
+        const std::size_t done = ran_ + kept_, left = n_ - std::min(n_, done);
+        if (left == 0) return "";
+        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+        const double per = secs / static_cast<double>(ran_);
+        return fmt::format("sweep: {} of {} runs done, {} to go: about {} more at this sweep's pace so far ({} a run)",
+                           done, n_, left, rough_duration(per * static_cast<double>(left)), rough_duration(per));
+    }
+
+private:
+    std::size_t n_, ran_ = 0, kept_ = 0;
+    std::chrono::steady_clock::time_point t0_;
+};
+
+/// Runs, continues or keeps one member in this process; its exit status (0
+/// when kept). position: "run k of n" in the start line, or "".
+int run_member(const Config& c, const std::string& dir, const std::string& label, SweepObserver& obs,
+               const std::string& position = "") {
+    const std::string as = position.empty() ? label : fmt::format("{} ({})", label, position);
     // One writer: a member of an earlier sweep that was killed gets SIGTERM
     // (die_with_parent) and writes its shutdown checkpoint; give it a minute.
     const DirLock lock = lock_dir(dir, "the sweep member", 60.0);
     const MemberState st = member_state(dir);
     if (st == MemberState::finished || st == MemberState::failed) return report_done(st, dir, label, obs);
     if (st == MemberState::resume) {
-        obs.say(fmt::format("sweep: {}: continuing {}", label, dir));
+        obs.say(fmt::format("sweep: {}: continuing {}", as, dir));
         return resume_run(c, derive_run_numbers(c), dir, obs.runs());
     }
     if (!is_wedge(c)) {
@@ -54,7 +91,7 @@ int run_member(const Config& c, const std::string& dir, const std::string& label
             if (e.path().filename() != "config.toml" && e.path().filename() != "console.txt") partial.push_back(e.path());
         for (const auto& q : partial) remove_path(q.string());
     }
-    obs.say(fmt::format("sweep: {} -> {}", label, dir));
+    obs.say(fmt::format("sweep: {} -> {}", as, dir));
     return start_run_in(c, derive_run_numbers(c), dir, obs.runs());
 }
 
@@ -62,6 +99,7 @@ int run_member(const Config& c, const std::string& dir, const std::string& label
 int run_members_in_order(const Sweep& s, int threads, SweepObserver& obs) {
     std::vector<std::string> finished, failed;
     bool all_wedges = true;
+    SweepProgress progress(s.size());
     for (std::size_t k = 0; k < s.size(); ++k) {
         const std::string& dir = s.dirs[k];
         const std::string label = s.label(k);
@@ -69,8 +107,10 @@ int run_members_in_order(const Sweep& s, int threads, SweepObserver& obs) {
         use_member_threads(c);
         all_wedges = all_wedges && is_wedge(c);
         int rc = 0;
+        const MemberState before = member_state(dir);
+        const bool kept = before == MemberState::finished || before == MemberState::failed;
         try {
-            rc = run_member(c, dir, label, obs);
+            rc = run_member(c, dir, label, obs, progress.position(k));
         } catch (const InterruptedError&) {
             // While settling (not checkpointed): the member settles again when the sweep continues.
             obs.trouble(fmt::format("the sweep stopped at {}; continue it with: orodem resume {}", label, s.root));
@@ -80,6 +120,9 @@ int run_members_in_order(const Sweep& s, int threads, SweepObserver& obs) {
             obs.trouble(fmt::format("sweep: {}: unstable: {}", label, e.what()));
             rc = static_cast<int>(ExitCode::unstable);
         }
+        if (kept) progress.kept();
+        else if (rc == 0 || rc == static_cast<int>(ExitCode::unstable))
+            if (const std::string line = progress.ended(); !line.empty()) obs.say(line);
         if (rc == static_cast<int>(ExitCode::unstable)) {
             failed.push_back(label);
             continue;
@@ -155,17 +198,19 @@ int run_members_at_once(const Sweep& s, const LocalJobs& j, SweepObserver& obs) 
     StopWatch watch(stop);
     int forwarded = 0;
     std::size_t next = 0;
+    SweepProgress progress(n);
     while (next < n || !running.empty()) {
         while (!stop.stop_requested() && running.size() < static_cast<std::size_t>(j.jobs) && next < n) {
             const std::size_t k = next++;
             const MemberState st = member_state(s.dirs[k]);
             if (st == MemberState::finished || st == MemberState::failed) {
                 rc[k] = report_done(st, s.dirs[k], s.label(k), obs);
+                progress.kept();
                 continue;
             }
             running.push_back({start_member(exe, s.dirs[k], child_threads), k});
-            obs.say(fmt::format("sweep: {} -> {} ({}, {} thread{}; its output in {}/console.txt)", s.label(k),
-                                s.dirs[k], st == MemberState::resume ? "continuing" : "starting", child_threads,
+            obs.say(fmt::format("sweep: {} ({}) -> {} ({}, {} thread{}; its output in {}/console.txt)", s.label(k),
+                                progress.position(k), s.dirs[k], st == MemberState::resume ? "continuing" : "starting", child_threads,
                                 child_threads == 1 ? "" : "s", s.dirs[k]));
         }
         if (const int sig = stop.stop_requested(); sig && !forwarded) {
@@ -183,6 +228,8 @@ int run_members_at_once(const Sweep& s, const LocalJobs& j, SweepObserver& obs) 
         obs.say(fmt::format("sweep: {}: {}", s.label(k),
                             status == 0 ? "finished"
                                         : fmt::format("ended with exit status {} (see {}/console.txt)", status, s.dirs[k])));
+        if (status == 0 || status == static_cast<int>(ExitCode::unstable))
+            if (const std::string line = progress.ended(); !line.empty()) obs.say(line);
     }
     std::vector<std::string> finished, failed;
     int stop_rc = 0;

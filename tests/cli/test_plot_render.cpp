@@ -941,8 +941,9 @@ TEST_F(PlotRender, PlotSeedsDrawsOneMeanCurveOverAShadedBand) {
         std::string t = config_text(0.3);
         write(dir / "config.toml",
               t.replace(t.find("kind = 'clusters'\n"), 18, "kind = 'clusters'\nseed = " + std::to_string(k) + "\n"));
-        write(dir / "series.csv", std::string(kHeader) + "0,0,0.25,0.2," + std::to_string(4 * k) +
-                                      ",20,0.1,50,1,40\n10,1,1.0,0.4," + std::to_string(6 * k) + ",22,0.2,60,1,41\n");
+        // H/h0 0.6 and 0.8: α and β drawn (masked below 0.5, render/plots.hpp kTaperMinHeight).
+        write(dir / "series.csv", std::string(kHeader) + "0,0,0.25,0.6," + std::to_string(4 * k) +
+                                      ",20,0.1,50,1,40\n10,1,1.0,0.8," + std::to_string(6 * k) + ",22,0.2,60,1,41\n");
     }
     Result r = orodem("plot seeds/s1 seeds/s2 seeds/s3 --out band.png --seeds");
     ASSERT_EQ(r.status, 0) << r.err;

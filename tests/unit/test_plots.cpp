@@ -44,7 +44,7 @@ std::string slurp(const fs::path& p) {
     return s.str();
 }
 
-/// A wedge run's series: S = 0 .. 1, NaN angles before a wedge exists.
+/// A wedge run's series: S = 0 .. 1, NaN angles before a wedge exists, H/h0 over 0.5 (kTaperMinHeight) from S = 0.5.
 Series series(double alpha_shift) {
     Series s;
     s.path = "series.csv";
@@ -53,7 +53,7 @@ Series series(double alpha_shift) {
     s.values = {{0.0, 0.25, 0.5, 0.75, 1.0},
                 {nan, nan, 12.5 + alpha_shift, 14 + alpha_shift, 15 + alpha_shift},
                 {nan, nan, 8.25, 9.3, 10},
-                {0.1, 0.2, 0.3, 0.35, 0.4},
+                {0.1, 0.3, 0.6, 0.7, 0.8},
                 {0.5, 0.1, -0.2, -0.3, -0.4},
                 {nan, 20, 35, nan, 50}};
     return s;
@@ -89,10 +89,17 @@ TEST(Plots, SvgHasEditableTitlesAxisLabelsTicksAndLegend) {
     plot_series(runs, {"wedge.mu_bp = 0.1", "wedge.mu_bp = 0.2"}, (dir / "p.svg").string(), o);
     const std::string svg = slurp(dir / "p.svg");
     EXPECT_EQ(svg.find("<symbol"), std::string::npos);  // no glyph outlines
-    for (const char* s : {"exp1: 2 runs in sweep", "(a) Taper angles α, β", "(b) Wedge height",
+    for (const char* s : {"exp1: 2 runs in sweep", "(a) Taper angles α, β (where H ≥ 0.5 h0)", "(b) Wedge height",
                           "(c) Peak deviation from the S point", "(d) Dilation", "S (shortening / h0)",
                           "angle (degrees)", "H / h0", "(x_peak − x_S) / h0", "D (%)", "α (prowedge)",
-                          "β (retrowedge)", "wedge.mu_bp = 0.1", "wedge.mu_bp = 0.2", "0.5", "-0.4"})
+                          "β (retrowedge)", "wedge.mu_bp = 0.1", "wedge.mu_bp = 0.2", "0.5", "-0.4",
+                          // every symbol defined in the figure
+                          "α, β: slopes of the pro- and retrowedge surface (line fits), drawn where the wedge height H "
+                          "≥ 0.5 h0",
+                          "S: shortening / h0; h0: the incoming layer's thickness; H: wedge height above the "
+                          "undeformed surface",
+                          "x_peak − x_S: where the highest surface column stands, from the S point",
+                          "D (%): dilation, the deformed wedge's area against the area of the layer it accreted"})
         EXPECT_TRUE(has_text(svg, s)) << s;
     // Four panels, each with its x label.
     std::size_t n = 0;
@@ -142,17 +149,18 @@ TEST(Plots, PngKeepsTheSizeOfTheRequest) {
     o.title = "exp1: r1";
     // The sizes the plots had before the canvas (the old code's output for
     // these requests): one legend row, with and without a title.
+    // The four notes that define the symbols add a legend row each (24 px at this width).
     plot_series({series(0.0)}, {"r1"}, (dir / "a.png").string(), o);
-    EXPECT_EQ(png_size(dir / "a.png"), std::make_pair(1400, 976));
+    EXPECT_EQ(png_size(dir / "a.png"), std::make_pair(1400, 976 + 4 * 24));
     // Three runs whose legend takes two rows at the new font but took one
     // at the old: the old size all the same.
     plot_series({series(0.0), series(1.0), series(2.0)}, {"wedge.mu_bp = 0.1", "wedge.mu_bp = 0.2", "wedge.mu_bp = 0.3"},
                 (dir / "b.png").string(), o);
-    EXPECT_EQ(png_size(dir / "b.png"), std::make_pair(1400, 976));
+    EXPECT_EQ(png_size(dir / "b.png"), std::make_pair(1400, 976 + 4 * 24));
     o.title.clear();
     o.width_px = 2000;
     plot_series({series(0.0)}, {"r1"}, (dir / "c.png").string(), o);
-    EXPECT_EQ(png_size(dir / "c.png"), std::make_pair(2000, plot::legacy_height(2000, 2, 2, 0.6, false, 1)));
+    EXPECT_EQ(png_size(dir / "c.png"), std::make_pair(2000, plot::legacy_height(2000, 2, 2, 0.6, false, 1 + 4)));
     EXPECT_EQ(plot::legacy_height(1400, 2, 2, 0.6, true, 1), 976);
     // The calibration bar chart: 1000 px wide, a title and one legend row.
     plot_bars({"discs", "clusters"}, {{"μ_bp = 0.3", {0.3, 0.31}, {0.01, 0.02}}}, "Basal friction", "packing",
@@ -177,6 +185,29 @@ TEST(Plots, SeedBandIsShadedInThePlotAndTheLegend) {
     for (auto p = svg.find("fill-opacity=\"0.200\""); p != std::string::npos; p = svg.find("fill-opacity=\"0.200\"", p + 1))
         ++n;
     EXPECT_EQ(n, 6u + 1u);
+    fs::remove_all(dir);
+}
+
+TEST(Plots, TaperAnglesHaveStandardErrorBandsAndAreMaskedWhileTheWedgeIsLow) {
+    const fs::path dir = scratch_dir("se");
+    Series s = series(0.0);
+    // H/h0 = 0.3 at S = 0.25, where α and β have values: masked (below 0.5).
+    s.values[1][1] = 85.0;
+    s.values[2][1] = 75.0;
+    s.names.insert(s.names.end(), {"alpha_se_deg", "beta_se_deg"});
+    s.values.push_back({std::nan(""), 7.0, 1.0, 1.0, 1.0});
+    s.values.push_back({std::nan(""), 7.0, 0.5, 0.5, 0.5});
+    plot_series({s}, {"r1"}, (dir / "s.svg").string());
+    const std::string svg = slurp(dir / "s.svg");
+    // One band each under α and β (S = 0.5 to 1), none elsewhere and no swatch.
+    std::size_t n = 0;
+    for (auto p = svg.find("fill-opacity=\"0.200\""); p != std::string::npos; p = svg.find("fill-opacity=\"0.200\"", p + 1))
+        ++n;
+    EXPECT_EQ(n, 2u);
+    EXPECT_TRUE(has_text(svg, "shaded around α, β: ± 1 standard error of the line fits"));
+    // The masked 85° never sets the angle axis (no panel has ticks beyond 50).
+    EXPECT_FALSE(has_text(svg, "80"));
+    EXPECT_FALSE(has_text(svg, "60"));
     fs::remove_all(dir);
 }
 

@@ -88,6 +88,12 @@ int legacy_legend_rows(int width, const std::vector<LegendEntry>& legend) {
     int rows = 0;
     for (const LegendEntry& e : legend) {
         if (e.key) continue;
+        if (e.note) {  // a row of its own
+            if (rows == 0) rows = 1;
+            else if (ex > x0) ++rows;
+            ex = x1 + 1.0;  // the next entry starts a row
+            continue;
+        }
         const double w = 72.0 + text_width(e.label, 14.0);
         if (rows == 0) rows = 1;
         else if (ex > x0 && ex + w > x1) ex = x0, ++rows;
@@ -117,6 +123,12 @@ Figure figure_layout(int width_px, int columns, int rows, double aspect, bool ti
     double ex = x0;
     int legend_rows = legend.empty() ? 0 : 1;
     for (const LegendEntry& e : legend) {
+        if (e.note) {  // a row of its own
+            if (ex > x0) ++legend_rows;
+            f.legend_at.emplace_back(x0, (legend_rows - 0.5) * f.row);
+            ex = x1 + 1.0;  // the next entry starts a row
+            continue;
+        }
         const double w = (kKeyLine + kKeyGap + kKeySpace) * F + text_width(e.label, F);
         if (ex > x0 && ex + w > x1) ex = x0, ++legend_rows;
         f.legend_at.emplace_back(ex, (legend_rows - 0.5) * f.row);
@@ -196,6 +208,10 @@ void draw_legend(Canvas& c, const Figure& f, const std::vector<LegendEntry>& ent
     for (std::size_t i = 0; i < entries.size() && i < f.legend_at.size(); ++i) {
         const LegendEntry& e = entries[i];
         const auto [x, y] = f.legend_at[i];
+        if (e.note) {
+            c.text(e.label, x, y, 0.85 * F, HAlign::left, VAlign::middle);
+            continue;
+        }
         if (e.band > 0.0) {
             const double x1 = x + kKeyLine * F, h = 0.45 * F;
             c.polygon({x, y - h, x1, y - h, x1, y + h, x, y + h}, e.colour, e.band);
@@ -206,6 +222,35 @@ void draw_legend(Canvas& c, const Figure& f, const std::vector<LegendEntry>& ent
             c.line(x, y, x + kKeyLine * F, y, e.colour, f.lw(3.0), e.dashed);
         c.text(e.label, x + (kKeyLine + kKeyGap) * F, y, F, HAlign::left, VAlign::middle);
     }
+}
+
+std::vector<LegendEntry> wrap_notes(const std::vector<LegendEntry>& legend, int width_px) {
+    const double W = std::max(width_px, 400), F = font_size(W), room = W - (2.0 * kOuter + kLeft) * F;
+    std::vector<LegendEntry> out;
+    for (const LegendEntry& e : legend) {
+        if (!e.note) {
+            out.push_back(e);
+            continue;
+        }
+        std::string line;
+        std::size_t pos = 0;
+        while (pos < e.label.size()) {
+            const std::size_t sp = e.label.find(' ', pos);
+            const std::string word = e.label.substr(pos, sp == std::string::npos ? std::string::npos : sp - pos);
+            pos = sp == std::string::npos ? e.label.size() : sp + 1;
+            const std::string longer = line.empty() ? word : line + " " + word;
+            if (!line.empty() && text_width(longer, 0.85 * F) > room) {
+                out.push_back(e);
+                out.back().label = line;
+                line = word;
+            } else {
+                line = longer;
+            }
+        }
+        out.push_back(e);
+        out.back().label = line;
+    }
+    return out;
 }
 
 std::vector<std::pair<std::size_t, std::size_t>> finite_runs(const std::vector<const std::vector<double>*>& cols) {

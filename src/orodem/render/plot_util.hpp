@@ -60,6 +60,7 @@ struct LegendEntry {
     bool dashed = false, marker = false;
     double band = 0.0;
     bool key = false;
+    bool note = false;  // a line of text alone on its row (no key): what a symbol or a shading means
 };
 
 /// Pixel layout of a figure: `rows` x `columns` panels under an optional
@@ -108,6 +109,9 @@ void draw_title(Canvas& c, const Figure& f, const std::string& title);
 
 /// The legend entries at f.legend_at.
 void draw_legend(Canvas& c, const Figure& f, const std::vector<LegendEntry>& entries);
+/// The notes of `legend` broken at spaces into as many notes (rows) as they
+/// need to fit a figure width_px wide (figure_layout's legend width).
+std::vector<LegendEntry> wrap_notes(const std::vector<LegendEntry>& legend, int width_px);
 
 /// Index ranges [begin, end) of the consecutive rows where every column is
 /// finite (the shortest column's length bounds them).

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <deque>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -11,6 +13,8 @@
 #include "orodem/render/plot_util.hpp"
 
 namespace orodem {
+
+const double kTaperMinHeight = 0.5;
 
 const std::vector<std::string> kPlotColumns = {"S", "alpha_deg", "beta_deg", "H_over_h0", "peak_dx_over_h0",
                                                "dilation_pct"};
@@ -123,7 +127,7 @@ void plot_series(const std::vector<Series>& runs, const std::vector<std::string>
     if (s_lo > 0 && s_lo <= s_hi) s_lo = 0;  // S axes start at 0
     const Range xr = axis_range(s_lo, s_hi, 8);
 
-    SeriesPanel taper{"(a) Taper angles α, β", "angle (degrees)", {}};
+    SeriesPanel taper{fmt::format("(a) Taper angles α, β (where H ≥ {:g} h0)", kTaperMinHeight), "angle (degrees)", {}};
     SeriesPanel height{"(b) Wedge height", "H / h0", {}};
     SeriesPanel peak{"(c) Peak deviation from the S point", "(x_peak − x_S) / h0", {}};
     SeriesPanel dil{"(d) Dilation", "D (%)", {}};
@@ -131,6 +135,21 @@ void plot_series(const std::vector<Series>& runs, const std::vector<std::string>
     // over a swatch of its band when it has one.
     std::vector<plot::LegendEntry> legend = {{"α (prowedge)", {}, false, false, 0.0, true},
                                              {"β (retrowedge)", {}, true, false, 0.0, true}};
+    // α and β masked while the wedge is lower than kTaperMinHeight h0 (a
+    // slope fitted to a few discs' relief means nothing), over a band of ± one
+    // standard error of their line fits (alpha_se_deg, beta_se_deg) unless the
+    // run has a band of its own (the seeds' lowest to highest).
+    std::deque<std::vector<double>> kept;  // the masked columns (stable addresses)
+    bool se_drawn = false;
+    auto masked = [&](const std::vector<double>* v, const std::vector<double>* H, const std::vector<double>* se,
+                      double sign) -> const std::vector<double>* {
+        if (!v || !H) return v;
+        std::vector<double> out(v->size(), std::nan(""));
+        for (std::size_t k = 0; k < v->size() && k < H->size(); ++k)
+            if ((*H)[k] >= kTaperMinHeight) out[k] = (*v)[k] + (se && k < se->size() ? sign * (*se)[k] : 0.0);
+        kept.push_back(std::move(out));
+        return &kept.back();
+    };
     for (std::size_t i = 0; i < runs.size(); ++i) {
         const Series& s = runs[i];
         const Colour c = run_color(i);
@@ -141,8 +160,22 @@ void plot_series(const std::vector<Series>& runs, const std::vector<std::string>
             if (band.lo && band.hi) cv.lo = band.lo->column(col), cv.hi = band.hi->column(col);
             return cv;
         };
-        taper.curves.push_back(curve("alpha_deg", false));
-        taper.curves.push_back(curve("beta_deg", true));
+        const auto* H = s.column("H_over_h0");
+        for (const auto& [col, se_col, dashed] : {std::tuple{"alpha_deg", "alpha_se_deg", false},
+                                                  std::tuple{"beta_deg", "beta_se_deg", true}}) {
+            Curve cv = curve(col, dashed);
+            const std::vector<double>* se = s.column(se_col);
+            if (!cv.lo && se) {
+                cv.lo = masked(cv.y, H, se, -1.0);
+                cv.hi = masked(cv.y, H, se, +1.0);
+                se_drawn = true;
+            } else {
+                cv.lo = masked(cv.lo, H, nullptr, 0.0);
+                cv.hi = masked(cv.hi, H, nullptr, 0.0);
+            }
+            cv.y = masked(cv.y, H, nullptr, 0.0);
+            taper.curves.push_back(cv);
+        }
         height.curves.push_back(curve("H_over_h0", false));
         peak.curves.push_back(curve("peak_dx_over_h0", false));
         dil.curves.push_back(curve("dilation_pct", false));
@@ -150,7 +183,20 @@ void plot_series(const std::vector<Series>& runs, const std::vector<std::string>
         legend.back().band = band.lo && band.hi ? kBandAlpha : 0.0;
     }
     if (runs.empty()) legend.clear();
-
+    // Every symbol of the panels, said in the figure (a note a row, wrapped to the width).
+    if (!runs.empty()) {
+        std::vector<std::string> notes = {
+            fmt::format("α, β: slopes of the pro- and retrowedge surface (line fits), drawn where the wedge height "
+                        "H ≥ {:g} h0",
+                        kTaperMinHeight)};
+        if (se_drawn) notes.push_back("shaded around α, β: ± 1 standard error of the line fits");
+        notes.insert(notes.end(),
+                     {"S: shortening / h0; h0: the incoming layer's thickness; H: wedge height above the undeformed surface",
+                      "x_peak − x_S: where the highest surface column stands, from the S point",
+                      "D (%): dilation, the deformed wedge's area against the area of the layer it accreted"});
+        for (const std::string& n : notes) legend.push_back({n, {}, false, false, 0.0, false, true});
+    }
+    legend = plot::wrap_notes(legend, o.width_px);
     const plot::Figure f = plot::figure_layout(o.width_px, 2, 2, kAspect, !o.title.empty(), legend);
     const auto canvas = make_canvas(format_of(path), f.width, f.height);
     plot::draw_title(*canvas, f, o.title);

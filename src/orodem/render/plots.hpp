@@ -4,7 +4,10 @@
 // width). Four panels: taper angles α (solid) and β (dashed), H/h0, peak
 // deviation (x_peak − x_S)/h0 and dilation D (%), each against S; one
 // colour per run and a legend under the panels naming the two line styles
-// and the runs. NaN values (no wedge yet) leave gaps. A run may carry a band
+// and the runs, then notes defining every symbol. NaN values (no wedge yet)
+// leave gaps; α and β are masked while H < kTaperMinHeight h0 and drawn over
+// a band of ± 1 standard error of their line fits (series columns
+// alpha_se_deg, beta_se_deg) when the run has no band of its own. A run may carry a band
 // (e.g. the lowest and highest values over packing seeds, `orodem plot
 // --seeds`), shaded in its colour behind its curves and in its legend entry.
 // Format from the extension (.svg with <text> labels, .pdf, otherwise PNG);
@@ -22,6 +25,10 @@ struct PlotOptions {
     int width_px = 1400;   // figure width; the height follows from it and the legend
     std::string title;     // optional line above the panels
 };
+
+/// α and β are drawn only where H/h0 is at least this (a wedge a few discs
+/// high has no meaningful slope); said in the figure.
+extern const double kTaperMinHeight;
 
 /// The columns the plots need (series.csv of a wedge run, SPEC §4).
 extern const std::vector<std::string> kPlotColumns;

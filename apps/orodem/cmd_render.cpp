@@ -46,6 +46,19 @@ std::vector<double> default_stack(const std::vector<Snapshot>& snaps) {
     return {0.25 * last, 0.5 * last, 0.75 * last, last};
 }
 
+/// --xlim and --title as a FrameChoice (ConfigError unless --xlim has two values).
+FrameChoice frame_choice(const std::vector<double>& xlim, const std::string& title) {
+    FrameChoice f;
+    f.title = title;
+    if (xlim.empty()) return f;
+    if (xlim.size() != 2)
+        throw ConfigError(fmt::format("--xlim: give two numbers A,B (x from A to B h0 from the S point), not {}",
+                                      xlim.size()));
+    f.x_lo = xlim[0];
+    f.x_hi = xlim[1];
+    return f;
+}
+
 /// The fault lines of every snapshot of the run (faults.csv, or computed
 /// again from the snapshots for a run made before it).
 RunFaultLines fault_lines_of(const SavedRun& run) {
@@ -57,6 +70,8 @@ RunFaultLines fault_lines_of(const SavedRun& run) {
 int cmd_render(const RenderArgs& a) {
     require_run_dir(a.run_dir);
     const SavedRun run = open_saved_run(a.run_dir);
+    const FrameChoice frame = frame_choice(a.xlim, a.title);
+    saved_run_view(run, a.width, frame);  // exit 2 for a bad --xlim before anything is drawn
     if (!a.out.empty()) {
         picture_format(a.out);  // exit 2 before anything else
         refuse_existing({a.out}, a.force, "render");
@@ -68,7 +83,7 @@ int cmd_render(const RenderArgs& a) {
         }
         const fs::path parent = fs::absolute(a.out).parent_path();
         make_dirs(parent.string());
-        const PictureInfo info = render_run_figure(run, chosen, a.color_by, a.width, a.out, &faults);
+        const PictureInfo info = render_run_figure(run, chosen, a.color_by, a.width, a.out, &faults, frame);
         std::string list;
         for (std::size_t k : chosen) list += fmt::format("{}{:.2f}", list.empty() ? "" : ", ", run.snaps[k].S);
         fmt::print("render: {} panels (S = {}), {} x {} px{}, in {}\n", chosen.size(), list, info.width_px,
@@ -102,7 +117,7 @@ int cmd_render(const RenderArgs& a) {
     std::size_t pictures = 0;
     for (std::size_t k : chosen) {
         const Frame f = read_frame(run, k);
-        ViewOptions view = run_view(run.config, a.width);
+        ViewOptions view = saved_run_view(run, a.width, frame);
         view.per_frame_scale = f.per_frame_scale;
         Panel panel = strain[k] ? frame_panel(f, ColorBy::strain, &faults[k]) : frame_panel(f, ColorBy::horizons, nullptr);
         pictures += render_output_pictures(panel, view, dir, fs::path(run.snaps[k].file).stem().string(), a.format).size();
@@ -123,12 +138,19 @@ int cmd_movie(const MovieArgs& a) {
     o.color_by = a.color_by;
     o.width_px = a.width;
     o.fps = a.fps;
+    o.seconds = a.seconds;
+    o.blend = a.blend;
+    o.frame = frame_choice(a.xlim, a.title);
+    movie_frames(run.snaps.size(), o);          // exit 2 before anything is drawn
+    saved_run_view(run, a.width, o.frame);
     if (is_strain(a.color_by)) {
         require_colour_data(run, run.snaps.size() - 1, a.color_by);  // exit 2, nothing written
         o.faults = fault_lines_of(run);
     }
     const std::size_t frames = render_run_movie(run, o, a.out);
-    fmt::print("movie: {} frames ({} per second) in {}\n", frames, a.fps, a.out);
+    fmt::print("movie: {} snapshots, each shown {:.3g} s ({}), {:g} s at {:g} frames per second ({} frames) in {}\n",
+               run.snaps.size(), a.seconds / static_cast<double>(run.snaps.size()),
+               a.blend ? "cross-faded into the next" : "repeated frames", a.seconds, a.fps, frames, a.out);
     return 0;
 }
 

@@ -69,6 +69,8 @@ struct RenderArgs {
     orodem::ColorBy color_by = orodem::ColorBy::horizons;  // the stacked figure's colouring: horizons | displacement | strain | strain_total
     int width = 1600;                   // picture width [px]
     bool force = false;                 // replace existing files
+    std::vector<double> xlim;           // --xlim A,B: x from A to B h0 from the S point; empty: the run's frame
+    std::string title;                  // the pictures' title; empty: the experiment's name
 };
 /// orodem render (cmd_render.cpp): with `out`, one figure stacking the
 /// snapshots nearest each S of `at` (four evenly spread when empty); without,
@@ -82,10 +84,15 @@ struct MovieArgs {
     std::string out;                    // .mp4 or .gif
     orodem::ColorBy color_by = orodem::ColorBy::horizons;  // horizons | displacement | strain | strain_total
     int width = 1600;                   // frame width [px]
-    double fps = 4.0;                   // snapshots per second [1/s]
+    double fps = 25.0;                  // the file's frame rate [1/s]
+    double seconds = 10.0;              // its length [s]
+    bool blend = false;                 // cross-fade between snapshots instead of holding each
     bool force = false;                 // replace an existing file
+    std::vector<double> xlim;           // as RenderArgs
+    std::string title;
 };
-/// orodem movie (cmd_render.cpp): every snapshot of the run as one frame,
+/// orodem movie (cmd_render.cpp): every snapshot of the run, shown for
+/// seconds / snapshots each at fps frames per second (held or cross-faded),
 /// encoded by ffmpeg (exit 6 when it is not installed).
 int cmd_movie(const MovieArgs& a);
 /// orodem measure (cmd_measure.cpp): the wedge measures of each saved snapshot

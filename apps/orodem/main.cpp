@@ -189,15 +189,33 @@ int main(int argc, char** argv) {
     render->add_option("--width", ra.width, "Picture width in pixels")
         ->check(CLI::Range(200, 20000))
         ->capture_default_str();
+    render->add_option("--xlim", ra.xlim, "Crop the frame to x from A to B h0 from the S point, e.g. --xlim -6,3 "
+                                          "(the deformed zone; default the run's whole frame)")
+        ->delimiter(',')
+        ->check(kFinite);
+    render->add_option("--title", ra.title, "The pictures' title (default the experiment's name)");
     render->add_flag("--force", ra.force, "Replace files that exist already (never done otherwise)");
 
     MovieArgs ma;
-    auto* movie = app.add_subcommand("movie", "An animation of a run's saved snapshots, one frame each, in the run's "
-                                              "frame and colour scales (needs ffmpeg: exit status 6 without it)");
+    auto* movie = app.add_subcommand("movie", "An animation of a run's saved snapshots, --seconds long at --fps, each "
+                                              "snapshot shown for an equal time (held, or cross-faded with --blend), "
+                                              "in the run's frame and colour scales (needs ffmpeg: exit status 6 "
+                                              "without it)");
     movie->add_option("run_dir", ma.run_dir, "Run directory")->required();
     movie->add_option("--out", ma.out, "Output file, .mp4 or .gif")->required();
     add_color_by(movie, ma.color_by, "Colouring");
-    movie->add_option("--fps", ma.fps, "Frames (snapshots) per second")->check(CLI::Range(0.1, 60.0))->check(kFinite)->capture_default_str();
+    movie->add_option("--fps", ma.fps, "The file's frame rate, frames per second")->check(CLI::Range(1.0, 60.0))->check(kFinite)->capture_default_str();
+    movie->add_option("--seconds", ma.seconds, "The movie's length in seconds; each snapshot is shown for "
+                                               "seconds / snapshots")
+        ->check(CLI::Range(0.5, 3600.0))
+        ->check(kFinite)
+        ->capture_default_str();
+    movie->add_flag("--blend", ma.blend, "Cross-fade from each snapshot to the next (ffmpeg's framerate filter: "
+                                         "a blend of two pictures, not a simulated state) instead of holding each");
+    movie->add_option("--xlim", ma.xlim, "Crop the frame to x from A to B h0 from the S point")
+        ->delimiter(',')
+        ->check(kFinite);
+    movie->add_option("--title", ma.title, "The frames' title (default the experiment's name)");
     movie->add_option("--width", ma.width, "Frame width in pixels")->check(CLI::Range(200, 8000))->capture_default_str();
     movie->add_flag("--force", ma.force, "Replace the file if it exists already");
 

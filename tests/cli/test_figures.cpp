@@ -174,6 +174,26 @@ TEST_F(Figures, RenderNeverReplacesFilesUnlessForced) {
     EXPECT_EQ(orodem("render r --out a.png --format svg").status, 2);
     EXPECT_EQ(orodem("render r --out a.png --color-by strains").status, 2);
     EXPECT_EQ(orodem("render r --color-by strain").status, 2);  // only with --out
+    // --xlim crops the frame to x from A to B h0 from the S point, --title replaces the experiment's name.
+    r = orodem("render r --at 0.5 --out crop.svg --xlim -3,2 --title 'mu_bp = 0.3, seed 1'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string crop = slurp(work_ / "crop.svg");
+    EXPECT_HAS(crop, ">mu_bp = 0.3, seed 1</text>");
+    EXPECT_HAS(crop, ">-3</text>");
+    EXPECT_HAS(crop, ">2</text>");
+    EXPECT_EQ(crop.find(">-4</text>"), std::string::npos);
+    EXPECT_EQ(crop.find(">exp1</text>"), std::string::npos);
+    r = orodem("render r --at 0.5 --dir cropped --xlim -3,2");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(png_size(work_ / "cropped" / "horizons_S00.500.png").width, 1600);  // a narrower x range, drawn larger
+    EXPECT_GT(png_size(work_ / "cropped" / "horizons_S00.500.png").height,
+              png_size(run / "figures" / "horizons_S00.500.png").height);
+    for (const char* bad : {"--xlim 2,-3", "--xlim 1", "--xlim 1,2,3"}) {
+        r = orodem(std::string("render r --out bad.png ") + bad);
+        EXPECT_EQ(r.status, 2) << bad;
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        EXPECT_FALSE(fs::exists(work_ / "bad.png")) << bad;
+    }
 }
 
 TEST_F(Figures, MovieNeedsFfmpegAndMakesTheAnimation) {
@@ -200,7 +220,9 @@ TEST_F(Figures, MovieNeedsFfmpegAndMakesTheAnimation) {
         GTEST_SKIP() << "ffmpeg is not installed here (scripts/install-deps installs it): the movie itself is not tested";
     r = orodem("movie r --out run.mp4");
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_HAS(r.out, "3 frames");
+    // The defaults: 10 s at 25 frames per second, each of the 3 snapshots held for a third of it.
+    EXPECT_HAS(r.out, "movie: 3 snapshots, each shown 3.33 s (repeated frames), 10 s at 25 frames per second (250 "
+                      "frames) in run.mp4");
     const std::string mp4 = slurp(work_ / "run.mp4");
     ASSERT_GT(mp4.size(), 100u);
     EXPECT_EQ(mp4.substr(4, 4), "ftyp");
@@ -210,6 +232,29 @@ TEST_F(Figures, MovieNeedsFfmpegAndMakesTheAnimation) {
     r = orodem("movie r --out sub/run.gif --color-by displacement --fps 2 --width 640");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(slurp(work_ / "sub" / "run.gif").substr(0, 4), "GIF8");
+    // A fixed rate and length whatever the number of snapshots; cross-faded with --blend.
+    r = orodem("movie r --out blend.mp4 --blend --seconds 3 --fps 10 --xlim -4,2 --title 'exp1, mu_bp = 0.3'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_HAS(r.out, "each shown 1 s (cross-faded into the next), 3 s at 10 frames per second (30 frames)");
+    if (!orodem::find_on_path("ffprobe").empty()) {
+        std::string probe;
+        ASSERT_EQ(run("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                      "stream=nb_read_frames,r_frame_rate,duration -of csv=p=0 " +
+                          quote((work_ / "blend.mp4").string()),
+                      &probe),
+                  0);
+        EXPECT_EQ(probe, "10/1,3.000000,30\n");
+        ASSERT_EQ(run("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of "
+                      "csv=p=0 " + quote((work_ / "run.mp4").string()),
+                      &probe),
+                  0);
+        EXPECT_EQ(probe, "250\n");
+    }
+    // Fewer frames than snapshots: refused, nothing written.
+    r = orodem("movie r --out short.mp4 --seconds 1 --fps 2");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_HAS(r.err, "--seconds 1 at --fps 2 is 2 frames for 3 snapshots");
+    EXPECT_FALSE(fs::exists(work_ / "short.mp4"));
     // No temporary folder left beside them.
     for (const auto& e : fs::directory_iterator(work_))
         EXPECT_EQ(e.path().filename().string().find(".orodem-movie"), std::string::npos) << e.path();

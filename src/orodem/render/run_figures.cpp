@@ -102,11 +102,26 @@ void require_colour_data(const SavedRun& run, std::size_t k, ColorBy color_by) {
     if (!has_colour_data(run, k, color_by)) no_strain_error((fs::path(run.dir) / run.snaps[k].file).string(), color_by);
 }
 
+ViewOptions saved_run_view(const SavedRun& run, int width_px, const FrameChoice& choice) {
+    ViewOptions view = run_view(run.config, width_px);
+    const bool lo = std::isfinite(choice.x_lo), hi = std::isfinite(choice.x_hi);
+    if ((lo || hi) && !(lo && hi && choice.x_lo < choice.x_hi))
+        throw ConfigError(fmt::format("--xlim {:g},{:g}: give two numbers A,B with A < B (in h0 from the S point)",
+                                      choice.x_lo, choice.x_hi));
+    if (lo) {
+        view.x_min = view.x_s + choice.x_lo * view.h0;
+        view.x_max = view.x_s + choice.x_hi * view.h0;
+    }
+    if (!choice.title.empty()) view.title = choice.title;
+    return view;
+}
+
 PictureInfo render_run_figure(const SavedRun& run, const std::vector<std::size_t>& chosen, ColorBy color_by,
-                              int width_px, const std::string& out, const RunFaultLines* faults) {
+                              int width_px, const std::string& out, const RunFaultLines* faults,
+                              const FrameChoice& frame) {
     std::vector<Frame> frames;
     for (std::size_t k : chosen) frames.push_back(read_frame(run, k));
-    ViewOptions view = run_view(run.config, width_px);
+    ViewOptions view = saved_run_view(run, width_px, frame);
     view.color_by = color_by;
     std::vector<Panel> panels;
     for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -152,8 +167,19 @@ std::string last_line(const std::string& path) {
 
 }  // namespace
 
+std::size_t movie_frames(std::size_t snapshots, const MovieOptions& o) {
+    const double frames = std::round(o.fps * o.seconds);
+    if (!(frames >= static_cast<double>(snapshots)))
+        throw ConfigError(fmt::format("--seconds {:g} at --fps {:g} is {:g} frames for {} snapshots: some would never "
+                                      "be shown; give a longer --seconds or a higher --fps",
+                                      o.seconds, o.fps, frames, snapshots));
+    return static_cast<std::size_t>(frames);
+}
+
 std::size_t render_run_movie(const SavedRun& run, const MovieOptions& o, const std::string& out) {
     const std::string format = movie_format(out);
+    const std::size_t frames = movie_frames(run.snaps.size(), o);
+    const ViewOptions base = saved_run_view(run, o.width_px, o.frame);  // exit 2 before ffmpeg is looked for
     const std::string ffmpeg = find_on_path("ffmpeg");
     if (ffmpeg.empty())
         throw MissingToolError("orodem movie needs ffmpeg, which is not on PATH; install it "
@@ -165,7 +191,7 @@ std::size_t render_run_movie(const SavedRun& run, const MovieOptions& o, const s
     if (!::mkdtemp(templ.data())) throw_io_error("cannot make a temporary folder", templ);
     tmp.path = templ;
 
-    ViewOptions view = run_view(run.config, o.width_px);
+    ViewOptions view = base;
     view.color_by = o.color_by;
     for (std::size_t k = 0; k < run.snaps.size(); ++k) {
         const Frame f = read_frame(run, k);
@@ -175,14 +201,20 @@ std::size_t render_run_movie(const SavedRun& run, const MovieOptions& o, const s
                       fmt::format("{}/frame{:05d}.png", tmp.path, k));
     }
     const std::string encoded = tmp.path + "/movie." + format, log = tmp.path + "/ffmpeg.log";
+    // The snapshots come in at snapshots / seconds per second; ffmpeg makes
+    // the file's rate from them: fps (each snapshot's frame repeated) or
+    // framerate (a cross-fade between consecutive snapshots).
+    const double rate_in = static_cast<double>(run.snaps.size()) / o.seconds;
+    const std::string timing = o.blend ? fmt::format("framerate=fps={:g}", o.fps) : fmt::format("fps={:g}", o.fps);
     std::vector<std::string> args = {ffmpeg, "-nostdin", "-hide_banner", "-loglevel", "error", "-y",
-                                     "-framerate", fmt::format("{:g}", o.fps), "-i", tmp.path + "/frame%05d.png"};
+                                     "-framerate", fmt::format("{:.17g}", rate_in), "-i", tmp.path + "/frame%05d.png"};
     if (format == "gif") {
-        args.insert(args.end(), {"-vf", "split[a][b];[a]palettegen[p];[b][p]paletteuse", "-f", "gif"});
+        args.insert(args.end(), {"-vf", timing + ",split[a][b];[a]palettegen[p];[b][p]paletteuse", "-f", "gif"});
     } else {  // H.264 wants even sizes and 4:2:0 chroma for common players
-        args.insert(args.end(), {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white", "-pix_fmt", "yuv420p",
+        args.insert(args.end(), {"-vf", timing + ",pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white", "-pix_fmt", "yuv420p",
                                  "-movflags", "+faststart", "-f", "mp4"});
     }
+    args.insert(args.end(), {"-frames:v", std::to_string(frames)});
     args.push_back(encoded);
     ChildIo io;
     io.log = log;
@@ -195,7 +227,7 @@ std::size_t render_run_movie(const SavedRun& run, const MovieOptions& o, const s
     std::error_code ec;
     fs::rename(encoded, target, ec);
     if (ec) throw IoError(fmt::format("cannot move the movie into place as '{}': {}", out, ec.message()));
-    return run.snaps.size();
+    return frames;
 }
 
 }  // namespace orodem

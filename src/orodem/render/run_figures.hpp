@@ -17,6 +17,7 @@
 // lies below run/ and knows no fault table).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -69,20 +70,38 @@ bool has_colour_data(const SavedRun& run, std::size_t k, ColorBy color_by);
 /// The same, as a ConfigError naming the snapshot when it does not.
 void require_colour_data(const SavedRun& run, std::size_t k, ColorBy color_by);
 
+/// What a caller changes in the run's frame (orodem render, orodem movie).
+struct FrameChoice {
+    double x_lo = std::nan(""), x_hi = std::nan("");  // x range [h0 from the S point]; NaN: the run's
+    std::string title;                                 // the pictures' title; empty: the experiment's name
+};
+/// run_view of the run's config with `choice` applied; ConfigError unless x_lo < x_hi (when given).
+ViewOptions saved_run_view(const SavedRun& run, int width_px, const FrameChoice& choice = {});
+
 /// The stacked figure (render_panels) of the chosen snapshots into out;
 /// faults (may be null) gives the strain maps' fault lines.
 PictureInfo render_run_figure(const SavedRun& run, const std::vector<std::size_t>& chosen, ColorBy color_by,
-                              int width_px, const std::string& out, const RunFaultLines* faults = nullptr);
+                              int width_px, const std::string& out, const RunFaultLines* faults = nullptr,
+                              const FrameChoice& frame = {});
 
 struct MovieOptions {
     ColorBy color_by = ColorBy::horizons;  // horizons | displacement | strain | strain_total
     int width_px = 1600;                // frame width [px] (ffmpeg pads to even sizes)
-    double fps = 4.0;                   // frames (snapshots) per second [1/s]
+    double fps = 25.0;                  // the file's frame rate [1/s]
+    double seconds = 10.0;              // the movie's length [s]: each snapshot shown seconds / snapshots
+    bool blend = false;                 // cross-fade from each snapshot to the next (else: each held, repeated frames)
     RunFaultLines faults;               // strain maps: per snapshot; empty: no lines
+    FrameChoice frame;
 };
-/// An animation of every snapshot of the run into out (.mp4: H.264; .gif);
-/// returns the number of frames. MissingToolError when ffmpeg is not on
-/// PATH (checked before anything is drawn), IoError when it fails.
+/// The frames a movie of `snapshots` has at o.fps over o.seconds (round(fps · seconds));
+/// ConfigError when they are fewer than the snapshots (some would never be shown).
+std::size_t movie_frames(std::size_t snapshots, const MovieOptions& o);
+/// An animation of every snapshot of the run into out (.mp4: H.264; .gif),
+/// o.seconds long at o.fps: each snapshot drawn once and shown for
+/// o.seconds / snapshots, as repeated frames or (blend) cross-faded into the
+/// next by ffmpeg's framerate filter; returns movie_frames. MissingToolError
+/// when ffmpeg is not on PATH (checked before anything is drawn), IoError
+/// when it fails.
 std::size_t render_run_movie(const SavedRun& run, const MovieOptions& o, const std::string& out);
 
 /// The movie format of a path: "mp4" or "gif"; ConfigError otherwise.

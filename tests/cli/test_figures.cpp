@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -277,21 +278,26 @@ TEST_F(Figures, StrainMapsCarryTheFaultsOfTheTableOnOneScale) {
         EXPECT_EQ(s.height, h.height) << f;
     }
     // The tiny run finds no fault: a table planted in its place with two
-    // active faults at its last output (S = 0.5) (one pro-, one retro-vergent) and an inactive
-    // one. Drawn again from the snapshots with the table's lines: the lines
-    // drawn are the table's active faults at that S, in metres; one legend.
+    // active faults at its last output (S = 0.5) (one pro-, one retro-vergent), an inactive
+    // one and an active one dipping 3° (outside the detector's stated range,
+    // kFaultDipMinDeg: in the table, not drawn). Drawn again from the snapshots with the table's lines:
+    // the lines drawn are the table's active faults at that S within the range, in metres, with their ids; one legend.
     const orodem::SavedRun saved = orodem::open_saved_run(run.string());
     const double h0 = saved.config.h0;
-    std::vector<orodem::Fault> planted(3);
+    std::vector<orodem::Fault> planted(4);
     planted[0].id = 1, planted[0].vergence = 1, planted[0].root = {-1.0 * h0, 0.0}, planted[0].tip = {-1.5 * h0, 0.8 * h0};
+    planted[0].dip_deg = 58.0;
     planted[1].id = 2, planted[1].vergence = -1, planted[1].root = {0.2 * h0, 0.0}, planted[1].tip = {0.9 * h0, 0.7 * h0};
+    planted[1].dip_deg = 45.0;
     planted[2] = planted[0];
     planted[2].id = 3, planted[2].active = false;
+    planted[3] = planted[0];
+    planted[3].id = 4, planted[3].dip_deg = 3.0, planted[3].tip = {-3.0 * h0, 0.1 * h0};
     std::string csv = orodem::faults_header() + "\n";
     for (const auto& f : planted) csv += orodem::faults_line(saved.snaps[2].S, f, h0) + "\n";
     write(run / "faults.csv", csv);
     const orodem::RunFaults table = orodem::run_faults(run.string());
-    ASSERT_EQ(table.rows.size(), 3u);
+    ASSERT_EQ(table.rows.size(), 4u);
     const orodem::RunFaultLines lines = orodem::run_fault_lines(table, saved.snaps, saved.config.h0);
     ASSERT_EQ(lines.size(), 3u);
     EXPECT_TRUE(lines[0].empty());  // S = 0: no interval, no fault
@@ -299,11 +305,12 @@ TEST_F(Figures, StrainMapsCarryTheFaultsOfTheTableOnOneScale) {
     for (std::size_t k : {1u, 2u}) {
         std::size_t active = 0;
         for (const orodem::FaultRow& row : table.rows) {
-            if (std::fabs(row.S - saved.snaps[k].S) > 1e-6 || !row.fault.active) continue;
+            if (std::fabs(row.S - saved.snaps[k].S) > 1e-6 || !row.fault.active || row.fault.dip_deg < 10.0) continue;
             ASSERT_LT(active, lines[k].size());
             EXPECT_NEAR(lines[k][active].root.x, row.fault.root.x * saved.config.h0, 1e-9);
             EXPECT_NEAR(lines[k][active].tip.y, row.fault.tip.y * saved.config.h0, 1e-9);
             EXPECT_EQ(lines[k][active].vergence, row.fault.vergence);
+            EXPECT_EQ(lines[k][active].id, row.fault.id);
             ++active;
         }
         EXPECT_EQ(active, lines[k].size());
@@ -341,6 +348,14 @@ TEST_F(Figures, StrainMapsCarryTheFaultsOfTheTableOnOneScale) {
     r = orodem("render r --color-by strain --at 0.5 --out fig.svg");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_HAS(r.out, "2 active faults drawn");
-    EXPECT_HAS(slurp(work_ / "fig.svg"), ">retro-vergent fault</text>");
+    const std::string svg = slurp(work_ / "fig.svg");
+    EXPECT_HAS(svg, ">retro-vergent fault</text>");
+    EXPECT_HAS(svg, ">active faults dipping 10-75°, numbered by their id:</text>");
+    // The ids at the tips, bold in the fault's colour: 1 and 2; not 4 (3°) nor 3 (inactive).
+    std::vector<std::string> ids;
+    const std::regex id_text("font-weight=\"bold\" text-anchor=\"middle\" fill=\"#[0-9a-f]+\">([0-9]+)</text>");
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), id_text); it != std::sregex_iterator(); ++it)
+        ids.push_back((*it)[1]);
+    EXPECT_EQ(ids, (std::vector<std::string>{"1", "2"}));
 }
 

@@ -437,19 +437,31 @@ TEST(Render, FaultLinesAreDrawnFromRootToTipInTheirVergenceStyle) {
     // retro-vergent one dashed green (blue and green pixels found along
     // each, and white gaps along the dashed one).
     const fs::path dir = scratch_dir("faults");
-    std::vector<Fault> table(3);
+    // (The lines are drawn level for the pixel checks; their table dips are
+    // 30° and 45°. A fourth, active but dipping 5°, is outside the
+    // detector's range, kFaultDipMinDeg: not a line.)
+    std::vector<Fault> table(4);
+    table[0].id = 7;
     table[0].vergence = 1;
+    table[0].dip_deg = 30.0;
     table[0].root = {-1.5, 0.25};
     table[0].tip = {-0.5, 0.25};
+    table[1].id = 8;
     table[1].vergence = -1;
+    table[1].dip_deg = 45.0;
     table[1].root = {0.5, 0.75};
     table[1].tip = {1.5, 0.75};
     table[2] = table[0];
     table[2].active = false;
+    table[3] = table[0];
+    table[3].id = 9;
+    table[3].dip_deg = 5.0;
     const std::vector<FaultLine> lines = active_fault_lines(table, 2.0);
     ASSERT_EQ(lines.size(), 2u);
-    EXPECT_EQ(lines[0], (FaultLine{{-3.0, 0.5}, {-1.0, 0.5}, 1}));
-    EXPECT_EQ(lines[1], (FaultLine{{1.0, 1.5}, {3.0, 1.5}, -1}));
+    EXPECT_EQ(lines[0], (FaultLine{{-3.0, 0.5}, {-1.0, 0.5}, 1, 7}));
+    EXPECT_EQ(lines[1], (FaultLine{{1.0, 1.5}, {3.0, 1.5}, -1, 8}));
+    table[3].dip_deg = 80.0;  // too steep too
+    EXPECT_EQ(active_fault_lines(table, 2.0).size(), 2u);
     ParticleStore p;
     p.add({0.0, 0.3}, 0.3, 2500.0);
     ViewOptions o = view(1600);

@@ -84,6 +84,14 @@ struct Fault {
     double last_S = 0.0;         // last output it was found at [-]
 };
 
+/// The dips the detector is made to find faults at [deg]: the thrusts and
+/// back-thrusts of a wedge (its tests plant faults of 30° and 45°). A line
+/// flatter than kFaultDipMinDeg is shear along the base or a slide of
+/// surface discs, one steeper than kFaultDipMaxDeg a collapsing column, not
+/// a thrust; the fault table keeps them, the strain maps do not draw them.
+inline constexpr double kFaultDipMinDeg = 10.0;
+inline constexpr double kFaultDipMaxDeg = 75.0;
+
 struct FaultScan {
     std::vector<Fault> faults;       // in the order of their zone's first disc
     double threshold = 0.0;          // smoothed γ above which a disc is hot [-]

@@ -114,6 +114,9 @@ void draw_legend(Canvas& c, const Legend& g, double x_right, const Layout& L) {
             c.line(x, y, x + 2.0 * L.F, y, k == 0 ? kProFault : kRetroFault, lw, k != 0);
             x -= 1.2 * L.F;
         }
+        const std::string what = fmt::format("active faults dipping {:g}-{:g}°, numbered by their id:",
+                                             kFaultDipMinDeg, kFaultDipMaxDeg);
+        c.text(what, x - text_width(what, size), y, size, HAlign::left, VAlign::middle);
         return;
     }
     // Swatches, laid out from the right: "label [ ][ ]" pairs.
@@ -165,6 +168,9 @@ void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layou
         for (const FaultLine& f : *panel.faults) {
             c.line(px(f.root.x), py(f.root.y), px(f.tip.x), py(f.tip.y), f.vergence > 0 ? kProFault : kRetroFault, w,
                    f.vergence <= 0);
+            if (f.id >= 0)  // its id just above its tip
+                c.text(fmt::format("{}", f.id), px(f.tip.x), py(f.tip.y) - 0.3 * L.F, 0.85 * L.F, HAlign::centre,
+                       VAlign::baseline, true, false, f.vergence > 0 ? kProFault : kRetroFault);
             drawn.push_back(f);
         }
     }
@@ -205,7 +211,8 @@ void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layou
 std::vector<FaultLine> active_fault_lines(const std::vector<Fault>& faults, double unit) {
     std::vector<FaultLine> out;
     for (const Fault& f : faults)
-        if (f.active) out.push_back({unit * f.root, unit * f.tip, f.vergence});
+        if (f.active && f.dip_deg >= kFaultDipMinDeg && f.dip_deg <= kFaultDipMaxDeg)
+            out.push_back({unit * f.root, unit * f.tip, f.vergence, f.id});
     return out;
 }
 

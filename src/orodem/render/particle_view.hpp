@@ -72,9 +72,11 @@ inline constexpr double kStrainTotalLo = 1e-2, kStrainTotalHi = 10.0;
 struct FaultLine {
     Vec2 root, tip;
     int vergence = 0;
+    std::int64_t id = -1;  // the fault's track id, drawn at its tip (the same fault has the same number in every frame)
     bool operator==(const FaultLine&) const = default;
 };
-/// The active faults of `faults` as lines; unit converts their lengths to
+/// The active faults of `faults` whose dip is within the detector's range
+/// (kFaultDipMinDeg to kFaultDipMaxDeg, analysis/faults.hpp) as lines; unit converts their lengths to
 /// metres (1 for the run's faults, h0 for faults.csv's rows, which are in h0).
 std::vector<FaultLine> active_fault_lines(const std::vector<Fault>& faults, double unit);
 

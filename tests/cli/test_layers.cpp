@@ -110,6 +110,31 @@ TEST_F(Layers, SnapshotsCarryMaterialLayerAndDamageWhereTheConfigPutsThem) {
     EXPECT_GT(resting, 0.0) << out;
 }
 
+TEST_F(Layers, TheBiaxialTestOfANamedMaterialWithoutWeakeningIsThatOfMaterial) {
+    // calibrate.material = a material equal to [material] (μ 0.5, no
+    // weakening): the per-pair law gives the bytes of the one-law test.
+    const std::string common = "[run]\nexperiment = \"biaxial\"\n[calibrate]\nkinds = [\"clusters\"]\nwidth = 16.0\n"
+                               "height = 32.0\nmax_strain = 0.02\ncritical_from = 0.01\noutput_strain = 0.0025\n"
+                               "compaction_mu = 0.0\n";
+    write(work_ / "plain.toml", common + "mu_values = [0.5]\n");
+    write(work_ / "named.toml", common + "material = \"grit\"\n[materials.grit]\nmu = 0.5\n");
+    ASSERT_EQ(orodem("calibrate plain.toml --out A --threads 1").status, 0);
+    const Result r = orodem("calibrate named.toml --out B --threads 2");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string a = slurp(work_ / "A" / "biaxial-clusters-mu0.5.csv");
+    EXPECT_GT(a.size(), 100u);
+    EXPECT_EQ(a, slurp(work_ / "B" / "biaxial-clusters-mu0.5.csv"));
+    // A weakening material weakens: the peak is lower.
+    write(work_ / "weak.toml", common + "material = \"grit\"\n[materials.grit]\nmu = 0.5\nmu_residual = 0.1\n"
+                                        "weakening_distance = 0.01\n");
+    ASSERT_EQ(orodem("calibrate weak.toml --out C --threads 1").status, 0);
+    EXPECT_NE(a, slurp(work_ / "C" / "biaxial-clusters-mu0.5.csv"));
+    const Result bad = orodem("calibrate named.toml --out D --set calibrate.material='\"clay\"'");
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_NE(bad.err.find("key 'calibrate.material' = \"clay\": no [materials.clay]"), std::string::npos) << bad.err;
+    EXPECT_FALSE(fs::exists(work_ / "D"));
+}
+
 TEST_F(Layers, ConfigErrorsAreOneLineExit2AndWriteNothing) {
     struct Case {
         std::string extra, says;

@@ -100,6 +100,16 @@ void Simulation::refresh_material_columns() {
     if (st.broke.size() != npairs) st.broke.assign(npairs, 0);
 }
 
+void Simulation::reset_material_state() {
+    std::fill(particles.damage.begin(), particles.damage.end(), 0.0);
+    MaterialState& st = material_state_;
+    std::fill(st.slip.begin(), st.slip.end(), 0.0);
+    std::fill(st.broke.begin(), st.broke.end(), std::uint8_t{0});
+    st.cohesion_lost.clear();
+    st.damage_time = time;
+    columns_.stale = true;
+}
+
 void Simulation::save_material_state(ByteWriter& w) const {
     const MaterialState& st = material_state_;
     w.put_vector(st.slip);

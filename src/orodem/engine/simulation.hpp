@@ -179,6 +179,9 @@ public:
     void save_material_state(ByteWriter& w) const;
     static MaterialState read_material_state(ByteReader& r);
     void restore_material_state(MaterialState&& m);
+    /// A fresh material: every damage 0, no slip recorded, no cohesion lost
+    /// (the biaxial test after its compaction).
+    void reset_material_state();
     /// The pair keys whose cohesion is lost for good (ascending).
     const std::vector<std::uint64_t>& cohesion_lost() const { return material_state_.cohesion_lost; }
     /// After particles, contacts and walls are in place: the derived caches

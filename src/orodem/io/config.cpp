@@ -187,7 +187,13 @@ void read_calibrate(Config& c, Section&& section, const std::string& file, bool 
     const std::string& e = c.run.experiment;
     constexpr std::size_t kMaxValues = 20;
     k.kinds = r.choices("kinds", {c.packing.kind}, kCalibrationKinds);
-    if (e == "biaxial" || e == "repose")
+    if (e == "biaxial") {
+        k.material = r.string("material", k.material);
+        k.compaction_mu = r.number("compaction_mu", k.compaction_mu, closed(-1.0, 10.0));
+        if (k.compaction_mu < 0.0 && k.compaction_mu != -1.0)
+            r.refuse("compaction_mu", "must be -1 (the tested μ) or a friction coefficient >= 0");
+    }
+    if (e == "repose" || (e == "biaxial" && k.material.empty()))
         k.mu_values = r.numbers("mu_values", {c.material.mu}, closed(0.0, 10.0), kMaxValues);
     // A specimen size [m] of at least `times` largest radii, so that it holds a few discs.
     auto size = [&](const char* key, double def, double times) {
@@ -262,18 +268,27 @@ void read_layers(Config& c, const toml::table& root, const std::string& file) {
     const toml::node* layers = root.get("layers");
     const toml::node* retro = root.get("retro_layers");
     const toml::node* pairs = root.get("friction_pairs");
-    if (!mats && !layers && !retro && !pairs) return;
+    if (!mats && !layers && !retro && !pairs) {
+        if (!c.calibrate.material.empty())
+            throw ConfigError(fmt::format("{}: key 'calibrate.material' = \"{}\": no [materials.{}] in the config", file,
+                                          c.calibrate.material, c.calibrate.material));
+        return;
+    }
     const toml::source_region none{};
     auto fail = [&](const toml::node* n, const std::string& why) -> void {
         throw ConfigError(fmt::format("{}: {}", n ? where(file, n->source()) : file, why));
     };
-    if (!is_wedge(c))
+    // The biaxial test of a named material (calibrate.material) reads its [materials.NAME] alone.
+    const bool biaxial = c.run.experiment == "biaxial" && !c.calibrate.material.empty();
+    if (!is_wedge(c) && !(biaxial && mats && !layers && !retro && !pairs))
         fail(mats ? mats : layers ? layers : retro ? retro : pairs,
-             fmt::format("[materials] and [[layers]] are read by the wedge experiments only, not run.experiment = \"{}\"",
+             fmt::format("[materials] and [[layers]] are read by the wedge experiments only (and [materials] by the "
+                         "biaxial test of calibrate.material), not run.experiment = \"{}\"",
                          c.run.experiment));
     if (!mats || !mats->is_table() || mats->as_table()->empty())
         fail(mats ? mats : layers, "a layered wedge needs its materials: one table [materials.NAME] per material");
-    if (!layers) fail(mats, "[materials] are used through [[layers]] (from the base up, each a material and a thickness in h0)");
+    if (!layers && !biaxial)
+        fail(mats, "[materials] are used through [[layers]] (from the base up, each a material and a thickness in h0)");
     toml::table& out = c.resolved;
     out.insert_or_assign("materials", toml::table{});
     toml::table& out_mats = *out.get("materials")->as_table();
@@ -306,6 +321,15 @@ void read_layers(Config& c, const toml::table& root, const std::string& file) {
         r.finish();
         names.push_back(key);
         c.materials.push_back(std::move(nm));
+    }
+    if (biaxial) {
+        if (std::find(names.begin(), names.end(), c.calibrate.material) == names.end())
+            throw ConfigError(fmt::format("{}: key 'calibrate.material' = \"{}\": no [materials.{}]{}", file,
+                                          c.calibrate.material, c.calibrate.material,
+                                          config_reader::did_you_mean(c.calibrate.material, names)));
+        for (const NamedMaterial& nm : c.materials)
+            if (nm.name == c.calibrate.material) c.calibrate.mu_values = {nm.m.mu};
+        return;
     }
     auto read_stack = [&](const toml::node* node, const char* key, std::vector<LayerConfig>& stack) {
         const std::string what = fmt::format("[[{}]]: an array of tables, each with material = \"NAME\" and thickness [h0]", key);

@@ -136,6 +136,10 @@ struct CalibrateConfig {
     std::vector<PackingKind> kinds;        // packing kinds to test; default {packing.kind}
     std::vector<double> mu_values;         // biaxial, repose: μ_i values [-]; default {material.mu}
     std::vector<double> mu_bp_values;      // basal-friction: μ_bp values [-]; default {0.3}
+    std::string material;                  // biaxial: a NAME of [materials.NAME] to test (its μ, weakening and
+                                           // cohesion) instead of [material] with mu_values; "" = [material]
+    double compaction_mu = -1.0;           // biaxial: μ_i while compacting (0 gives the densest sample); -1 = the
+                                           // tested μ [-]
     // biaxial: gravity-free sample in a box of four smooth walls
     double width = 30.0;                   // sample width after compaction, about [m]
     double height = 60.0;                  // sample height after compaction, about [m]

@@ -9,6 +9,7 @@
 
 #include "orodem/boundary/conveyor_traction.hpp"
 #include "orodem/boundary/coulomb_base.hpp"
+#include "orodem/setup/layers.hpp"
 #include "orodem/setup/wedge.hpp"
 #include "orodem/boundary/servo_wall.hpp"
 #include "orodem/core/error.hpp"
@@ -125,9 +126,18 @@ BiaxialSample make_biaxial_sample(const Config& c, PackingKind kind, double mu) 
     pc.length = k.width * std::sqrt(phi_c / phi_l);
     pc.h0 = std::max(pc.r_max, phi_c * k.width * k.height / (0.9 * pc.length) - 3.0 * pc.r_max);
     BiaxialSample s;
+    s.mu = mu;
     Simulation& sim = s.sim;
     sim.particles = generate_packing(pc, c.material.density);
-    sim.params.law = with_damping_ratio(material_law(c, mu), c.packing.settle_damping_ratio);
+    // Compaction friction: the tested μ, or calibrate.compaction_mu (0: the densest sample).
+    const double mu_compact = c.calibrate.compaction_mu >= 0.0 ? c.calibrate.compaction_mu : mu;
+    sim.params.law = with_damping_ratio(material_law(c, mu_compact), c.packing.settle_damping_ratio);
+    if (!c.calibrate.material.empty()) {  // a named material: its own law, weakening and cohesion (setup/layers.hpp)
+        sim.materials = with_damping_ratio(material_table(c), c.packing.settle_damping_ratio);
+        if (c.calibrate.compaction_mu >= 0.0)
+            for (PairLaw& pl : sim.materials.pairs) pl.law.mu = pl.mu_residual = c.calibrate.compaction_mu;
+        assign_material(c, sim.particles, c.calibrate.material);
+    }
     sim.params.dt = timestep_for(c).dt;
     sim.params.gravity = {0.0, 0.0};
     sim.params.skin = c.numerics.skin;
@@ -202,7 +212,7 @@ BiaxialResult shear_biaxial(BiaxialSample& s, const Config& c, const Calibration
     Simulation& sim = s.sim;
     ServoWalls& servo = *s.servo;
     BiaxialResult res;
-    res.mu = sim.params.law.mu;
+    res.mu = s.mu;
     res.discs = sim.particles.size();
     res.strain_rate = k.strain_rate;
     res.inertial_number =
@@ -215,6 +225,11 @@ BiaxialResult shear_biaxial(BiaxialSample& s, const Config& c, const Calibration
     // The material's own damping from here on; initialize() refreshes the
     // walls' laws and keeps every contact's history.
     sim.params.law = material_law(c, res.mu);
+    if (sim.has_materials()) {
+        // The material's own damping, and a fresh material: the compaction's sliding is not damage.
+        sim.materials = material_table(c);
+        sim.reset_material_state();
+    }
     sim.initialize();
     const double sigma3 = k.confining_stress;
     sim.walls[kBoxTop].velocity = {0.0, -k.strain_rate * H0};

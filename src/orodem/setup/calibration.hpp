@@ -75,6 +75,7 @@ inline constexpr std::size_t kBoxBottom = 0, kBoxTop = 1, kBoxLeft = 2, kBoxRigh
 struct BiaxialSample {
     Simulation sim;
     ServoWalls* servo = nullptr;  // owned by sim.boundaries
+    double mu = 0.0;              // the tested μ_i (the compaction may use another: calibrate.compaction_mu) [-]
     double width() const;         // right − left wall [m]
     double height() const;        // top − bottom wall [m]
     double solid_fraction() const;  // disc area / box area [-]

@@ -45,6 +45,25 @@ std::uint8_t material_id(const Config& c, const std::string& name) {
 
 }  // namespace
 
+void assign_material(const Config& c, ParticleStore& p, const std::string& name) {
+    const std::size_t n = p.size();
+    const std::uint8_t id = material_id(c, name);
+    p.material.assign(n, id);
+    p.layer.assign(n, 0);
+    p.damage.assign(n, 0.0);
+    const double rho = c.materials[id].m.density;  // [kg/m³]
+    for (std::size_t s = 0; s < n; ++s) {
+        p.mass[s] = rho * std::numbers::pi * p.radius[s] * p.radius[s];
+        if (!(p.flags[s] & (kFlagFixed | kFlagAsleep))) p.set_free_inertia(s);
+    }
+}
+
+MaterialTable with_damping_ratio(MaterialTable t, double zeta) {
+    for (MaterialLaw& m : t.materials) m.law = with_damping_ratio(m.law, zeta);
+    for (PairLaw& pl : t.pairs) pl.law = with_damping_ratio(pl.law, zeta);
+    return t;
+}
+
 void assign_layers(const Config& c, ParticleStore& p) {
     const std::size_t n = p.size();
     const double h0 = c.packing.h0;

@@ -24,4 +24,12 @@ MaterialTable material_table(const Config& c);
 /// proside's from 0 at the base, then the retroside's.
 void assign_layers(const Config& c, ParticleStore& p);
 
+/// Every particle of p in material `name` of c.materials (layer 0): the
+/// biaxial test of calibrate.material. Masses as assign_layers.
+void assign_material(const Config& c, ParticleStore& p, const std::string& name);
+
+/// The table with every law's damping replaced by the damping ratio ζ
+/// (with_damping_ratio): the biaxial compaction's.
+MaterialTable with_damping_ratio(MaterialTable t, double zeta);
+
 }  // namespace orodem

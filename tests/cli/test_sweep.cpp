@@ -126,8 +126,9 @@ TEST(Sweep, InterruptedItContinuesWithResumeAndEndsAsAnUninterruptedSweep) {
 
     // Continued at another thread count: the interrupted member resumes, the other starts.
     ASSERT_EQ(run(std::string(ORODEM_EXE) + " resume " + sw + " --threads 2", &out), 0) << out;
-    EXPECT_HAS(out, "sweep: wedge.mu_bp = 0.1: continuing " + sw + "/wedge.mu_bp=0.1");
-    EXPECT_HAS(out, "sweep: wedge.mu_bp = 0.5 -> " + sw + "/wedge.mu_bp=0.5");
+    EXPECT_HAS(out, "sweep: wedge.mu_bp = 0.1 (run 1 of 2): continuing " + sw + "/wedge.mu_bp=0.1");
+    EXPECT_HAS(out, "sweep: 1 of 2 runs done, 1 to go: about ");
+    EXPECT_HAS(out, "sweep: wedge.mu_bp = 0.5 (run 2 of 2) -> " + sw + "/wedge.mu_bp=0.5");
     for (const char* m : {"wedge.mu_bp=0.1", "wedge.mu_bp=0.5"}) expect_same_outputs(dir / "ref" / m, dir / "sw" / m);
     EXPECT_HAS(slurp(dir / "sw" / "wedge.mu_bp=0.1" / "log.txt"), "resumed by orodem");
     EXPECT_TRUE(fs::exists(dir / "sw" / "plots.png"));
@@ -203,11 +204,11 @@ TEST(Sweep, WithTwoJobsTheRunsAreThoseOfASequentialSweepAlsoWhenInterrupted) {
                          dir / "sw");
     ASSERT_TRUE(signal_after_checkpoint(p, dir / "sw" / "wedge.mu_bp=0.1", {SIGTERM})) << slurp(p.err);
     ASSERT_EQ(wait_for(p), 143) << slurp(p.out) << slurp(p.err);
-    EXPECT_HAS(slurp(p.out), "sweep: wedge.mu_bp = 0.5 -> " + sw + "/wedge.mu_bp=0.5 (starting, 1 thread");
+    EXPECT_HAS(slurp(p.out), "sweep: wedge.mu_bp = 0.5 (run 2 of 2) -> " + sw + "/wedge.mu_bp=0.5 (starting, 1 thread");
     EXPECT_HAS(slurp(p.err), "the sweep stopped (SIGTERM); continue it with: orodem resume " + sw);
     EXPECT_HAS(slurp(dir / "sw" / "wedge.mu_bp=0.1" / "console.txt"), "interrupted by SIGTERM");
     ASSERT_EQ(run(std::string(ORODEM_EXE) + " resume " + sw + " --jobs 2 --threads 1", &out), 0) << out;
-    EXPECT_HAS(out, "sweep: wedge.mu_bp = 0.1 -> " + sw + "/wedge.mu_bp=0.1 (continuing, 1 thread");
+    EXPECT_HAS(out, "sweep: wedge.mu_bp = 0.1 (run 1 of 2) -> " + sw + "/wedge.mu_bp=0.1 (continuing, 1 thread");
     for (const char* m : {"wedge.mu_bp=0.1", "wedge.mu_bp=0.5"}) expect_same_outputs(dir / "ref" / m, dir / "sw" / m);
     EXPECT_HAS(slurp(dir / "sw" / "wedge.mu_bp=0.1" / "log.txt"), "resumed by orodem");
     EXPECT_TRUE(fs::exists(dir / "sw" / "plots.png"));

@@ -171,4 +171,12 @@ inline void write_tiny_exp1(const fs::path& dir, const std::string& name = "tiny
                       "[packing]\nh0 = 6.0\ncache_dir = \"" + (dir / "cache").string() + "\"\n");
 }
 
+/// write_tiny_exp1 plus `extra` TOML appended; returns the file's path.
+inline fs::path write_tiny_exp1_with(const fs::path& dir, const std::string& name, const std::string& extra) {
+    write_tiny_exp1(dir, name);
+    const fs::path p = dir / name;
+    write(p, slurp(p) + extra);
+    return p;
+}
+
 }  // namespace cli

@@ -25,6 +25,7 @@ std::vector<double> surface_with_x(const ParticleStore& p, const ProfileParams& 
     std::vector<double> top(static_cast<std::size_t>(n), kEmpty);
     top_x.assign(static_cast<std::size_t>(n), 0.0);
     for (std::size_t s = 0; s < p.size(); ++s) {
+        if (p.flags[s] & kFlagRemoved) continue;  // eroded (run/surface_erosion.hpp)
         const double fc = std::floor((p.x[s].x - pp.x_min) / pp.column);
         if (fc < 0.0 || fc >= n) continue;
         const auto c = static_cast<std::size_t>(fc);

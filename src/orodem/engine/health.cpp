@@ -62,6 +62,7 @@ std::optional<HealthProblem> check_health(const Simulation& sim, const HealthLim
     // 3. Speed and 4. domain.
     for (std::uint32_t id = 0; id < n; ++id) {
         const std::size_t s = p.slot_of_id[id];
+        if (p.flags[s] & kFlagRemoved) continue;  // eroded, parked below the base
         const Vec2 x = p.x[s];
         const double speed = norm(p.v[s]);
         if (lim.max_speed > 0.0 && speed > lim.max_speed)

@@ -220,6 +220,18 @@ std::string encode_checkpoint(const Simulation& sim, const RunLoopState& run, st
         p.for_each_material_column([&](const auto& col) { w.put_vector(col); });
         sim.save_material_state(w);
     }
+    if (run.surface.on) {
+        // Only in runs with [surface]: every other checkpoint keeps its bytes.
+        const SurfaceState& e = run.surface;
+        put_tag(w, "surface");
+        w.put(e.last_S);
+        w.put_vector(e.remainder);
+        w.put_vector(e.max_burial);
+        w.put(e.eroded_area);
+        w.put(e.requested_area);
+        w.put(e.removed);
+        w.put(e.eroded_bytes);
+    }
     put_tag(w, "end");
 
     const std::string& payload = w.bytes();
@@ -385,6 +397,19 @@ void decode_checkpoint(std::string_view bytes, AcceptedHashes expected_config_ha
             tag = r.get_string();
         } else if (sim.has_materials()) {
             bad("a checkpoint of a run with one material, for a run with several");
+        }
+        if (tag == "surface") {
+            SurfaceState& e = run.surface;
+            e.on = true;
+            r.get(e.last_S);
+            r.get_vector(e.remainder);
+            r.get_vector(e.max_burial);
+            if (e.max_burial.size() != n) bad("surface max_burial size");
+            r.get(e.eroded_area);
+            r.get(e.requested_area);
+            r.get(e.removed);
+            r.get(e.eroded_bytes);
+            tag = r.get_string();
         }
         if (tag != "end") throw CheckpointError(fmt::format("section 'end' expected, found '{}'", tag));
         if (r.remaining() != 0) bad(fmt::format("{} bytes left over", r.remaining()));

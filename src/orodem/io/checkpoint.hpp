@@ -43,6 +43,20 @@ public:
     using IoError::IoError;
 };
 
+/// Erosion's state between applications (run/surface_erosion.hpp); saved
+/// in the checkpoint's "surface" section, present only when `on` ([surface]
+/// in the config), so every other run's checkpoint keeps its bytes.
+struct SurfaceState {
+    bool on = false;                     // [surface] present (not saved: the section is)
+    double last_S = 0.0;                 // S of the last application [-]
+    std::vector<double> remainder;       // per surface column: area asked for and not yet taken [h0²]
+    std::vector<double> max_burial;      // by id: largest depth below the surface seen at an application [h0]
+    double eroded_area = 0.0;            // Σ layer area of the removed particles [h0²]
+    double requested_area = 0.0;         // Σ of the areas the law asked for [h0²]
+    std::uint64_t removed = 0;           // particles (clusters, lone discs) removed: the next parking place [-]
+    std::uint64_t eroded_bytes = 0;      // eroded.csv length [bytes]
+};
+
 /// The run loop's own state (run/wedge_run.hpp) at the checkpoint.
 struct RunLoopState {
     std::uint64_t outputs = 0;                          // output rows written so far
@@ -59,6 +73,7 @@ struct RunLoopState {
     std::uint64_t faults_bytes = 0;                     // faults.csv length [bytes]
     std::int32_t stage = 0;                             // the stage reached (stage_reached)
     std::int32_t stage_last_output = 0;                 // classify_stage of the last output
+    SurfaceState surface;                               // erosion ([surface]); off: not saved
 };
 
 /// FNV-1a 64 of the resolved config without the keys at their defaults

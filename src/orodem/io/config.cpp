@@ -397,6 +397,48 @@ void read_layers(Config& c, const toml::table& root, const std::string& file) {
     }
 }
 
+/// [surface] of a wedge experiment (docs/physics.md "Erosion in the running
+/// wedge"). Absent: nothing is read or resolved, so every other config
+/// resolves as before. Each law reads its own parameter only.
+void read_surface(Config& c, const toml::table& root, const std::string& file) {
+    const toml::node* n = root.get("surface");
+    if (!n) return;
+    if (!n->is_table())
+        throw ConfigError(fmt::format("{}: key 'surface' = {}: must be a table [surface]", where(file, n->source()), show(*n)));
+    if (!is_wedge(c))
+        throw ConfigError(fmt::format("{}: table [surface] is only read by the wedge experiments, not run.experiment = "
+                                      "\"{}\"; remove it or set run.experiment to critical-wedge, exp1, exp2 or exp3",
+                                      where(file, n->source()), c.run.experiment));
+    c.resolved.insert_or_assign("surface", toml::table{});
+    toml::table& o = *c.resolved.get("surface")->as_table();
+    Reader r(n->as_table(), "surface.", file, o, toml::source_region{});
+    SurfaceConfig& s = c.surface;
+    s.present = true;
+    s.law = r.choice("law", s.law, kSurfaceKinds, true);
+    switch (s.law) {
+        case SurfaceKind::none: break;
+        case SurfaceKind::elevation: s.k = r.number("k", s.k, non_negative()); break;
+        case SurfaceKind::slope: s.slope_k = r.number("slope_k", s.slope_k, non_negative()); break;
+        case SurfaceKind::uniform: s.rate = r.number("rate", s.rate, non_negative()); break;
+        case SurfaceKind::cap: s.cap_height = r.number("cap_height", s.cap_height, {-1.0, 1000.0, false, false}); break;
+        case SurfaceKind::diffusion:
+            s.kappa = r.number("kappa", s.kappa, non_negative());
+            s.ends = r.choice("ends", s.ends, {"closed", "fixed"});
+            if (s.ends == "fixed") {
+                s.h_left = r.number("h_left", s.h_left, closed(-1.0, 1000.0));
+                s.h_right = r.number("h_right", s.h_right, closed(-1.0, 1000.0));
+            }
+            break;
+    }
+    s.interval_steps = r.integer("interval_steps", s.interval_steps, 1, 100000000);
+    s.column_width = r.number("column_width", s.column_width, non_negative());
+    if (s.column_width == 0.0) {
+        s.column_width = c.wedge.column_width / c.packing.h0;
+        o.insert_or_assign("column_width", s.column_width);
+    }
+    r.finish();
+}
+
 Config read(const toml::table& root, const std::string& file, bool resolved_file) {
     Config c;
     toml::table& out = c.resolved;
@@ -414,10 +456,11 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
     // Top level: only known sections.
     for (auto&& [k, v] : root) {
         static const std::set<std::string> known = {"run",       "wedge",     "material", "packing",      "numerics",
-                                                    "calibrate", "materials", "layers",   "retro_layers", "friction_pairs"};
+                                                    "calibrate", "materials", "layers",   "retro_layers", "friction_pairs",
+                                                    "surface"};
         if (!known.count(std::string(k.str())))
             throw ConfigError(fmt::format("{}: unknown key '{}' = {}{}; allowed top-level tables: run, wedge, material, packing, "
-                                          "numerics, calibrate, materials, layers, retro_layers, friction_pairs",
+                                          "numerics, calibrate, materials, layers, retro_layers, friction_pairs, surface",
                                           where(file, k.source()), k.str(), show(v), did_you_mean(k.str(), known)));
     }
 
@@ -573,6 +616,7 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
         c.wedge.column_width = 2.0 * c.packing.r_max;
         out.get("wedge")->as_table()->insert_or_assign("column_width", c.wedge.column_width);
     }
+    read_surface(c, root, file);
     return c;
 }
 

@@ -116,6 +116,30 @@ struct FrictionPair {
     double mu_residual = 0.0;         // residual μ [-]; default mu
 };
 
+/// [surface]: erosion applied while the belt runs (docs/physics.md "Erosion
+/// and sedimentation laws", "Erosion in the running wedge"); wedge
+/// experiments only. Absent: nothing is resolved and the run is as before.
+/// Rates in h0 per unit S, lengths in h0 (analysis/surface_laws.hpp).
+enum class SurfaceKind { none, elevation, slope, uniform, cap, diffusion };
+inline constexpr Named<SurfaceKind> kSurfaceKinds[] = {
+    {SurfaceKind::none, "none"},       {SurfaceKind::elevation, "elevation"}, {SurfaceKind::slope, "slope"},
+    {SurfaceKind::uniform, "uniform"}, {SurfaceKind::cap, "cap"},             {SurfaceKind::diffusion, "diffusion"}};
+constexpr const char* name_of(SurfaceKind v) { return name_in(kSurfaceKinds, v); }
+struct SurfaceConfig {
+    bool present = false;             // (not a key) the config has a [surface] table
+    SurfaceKind law = SurfaceKind::none;  // none | elevation | slope | uniform | cap | diffusion
+    double k = 0.0;                   // elevation: E = k h [1/S]
+    double slope_k = 0.0;             // slope: E = K |dh/dx| [h0/S]
+    double rate = 0.0;                // uniform: rate ė over the columns above the incoming surface [h0/S]
+    double cap_height = 0.0;          // cap: everything above this height is removed [h0]
+    double kappa = 0.0;               // diffusion: ∂h/∂S = κ ∂²h/∂x² [h0²/S]
+    std::string ends = "closed";      // diffusion: closed (no flux) | fixed (the heights h_left, h_right beyond the wedge)
+    double h_left = 0.0;              // diffusion, fixed ends: height held beyond the pro toe [h0]
+    double h_right = 0.0;             // diffusion, fixed ends: height held beyond the retro toe [h0]
+    std::int64_t interval_steps = 100;  // apply every this many steps (100: the run loop's chunk) [-]
+    double column_width = 0.0;        // surface column width [h0]; 0 = wedge.column_width
+};
+
 struct PackingConfig {
     PackingKind kind = PackingKind::clusters;  // hexagonal | discs | clusters ([33]-[37])
     double r_min = 0.5;               // smallest disc radius [m]
@@ -190,6 +214,7 @@ struct Config {
     std::vector<LayerConfig> layers;           // [[layers]]: the incoming plate from the base up
     std::vector<LayerConfig> retro_layers;     // [[retro_layers]]: the retroside; default the same as layers
     std::vector<FrictionPair> friction_pairs;  // [[friction_pairs]]
+    SurfaceConfig surface;                     // [surface]: erosion while the belt runs (absent: off)
     bool layered() const { return !layers.empty(); }
     toml::table resolved;             // every key with its final value
     // A run directory's config.toml written before base_law existed (orodem

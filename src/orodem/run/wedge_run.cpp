@@ -53,7 +53,10 @@ int WedgeRun::run() {
     else output();
     while (sim_.step_count < total_steps_) {
         const std::uint64_t next_output = next_output_step();
-        advance_to(std::min(next_output, (sim_.step_count / kStepsPerChunk + 1) * kStepsPerChunk));
+        std::uint64_t to = std::min(next_output, (sim_.step_count / kStepsPerChunk + 1) * kStepsPerChunk);
+        if (surface_.active()) to = std::min(to, surface_.next_step(sim_.step_count));
+        advance_to(to);
+        if (surface_.due(sim_.step_count)) surface_.apply(sim_, st_.surface, S(), st_.x_then, eroded_file_);
         if (sim_.step_count == next_output) {
             output();
         } else if (sim_.step_count % kCheckEvery == 0) {
@@ -91,7 +94,7 @@ WedgeRun::WedgeRun(const Config& c, WedgeSetup& w, const std::string& dir, RunLo
     : c_(c), w_(w), sim_(w.sim), dir_(dir), log_(log), obs_(observer), resumed_(resumed != nullptr),
       h0_(c.packing.h0), cfg_hash_(config_hash(c)),
       adapt_threads_(omp_get_max_threads() > 1 && ThreadGovernor::enabled_by_environment()),
-      threads_(omp_get_max_threads()) {
+      threads_(omp_get_max_threads()), surface_(c, w) {
     if (resumed) {
         st_ = *resumed;
         w_.profile.y_mean = st_.surface_y_mean;
@@ -101,12 +104,27 @@ WedgeRun::WedgeRun(const Config& c, WedgeSetup& w, const std::string& dir, RunLo
     const std::string series_path = dir_ + "/series.csv";
     // A run that an older orodem started keeps the columns it started with.
     series_columns_ = std::numeric_limits<std::size_t>::max();
-    if (resumed_) {
+    if (resumed_ && !surface_.on()) {
         const std::string text = read_file(series_path);
         series_columns_ = csv_leading_columns(text.substr(0, text.find('\n')), series_header(), series_path);
     }
+    // With [surface] the ledger's columns follow (run/surface_erosion.hpp).
+    if (surface_.on()) {
+        if (resumed_ && !st_.surface.on)
+            throw ConfigError("the checkpoint has no erosion state ([surface]); resume with the run's own config.toml");
+        if (!resumed_) surface_.start(sim_.particles, st_.surface);
+        const std::string full = series_header() + "," + surface_series_header();
+        if (resumed_) {
+            const std::string text = read_file(series_path);
+            if (text.substr(0, text.find('\n')) != full)
+                throw ConfigError(fmt::format("'{}' does not have the columns of a run with [surface]", series_path));
+        }
+        series_columns_ = std::numeric_limits<std::size_t>::max();
+        eroded_file_ = LineFile(dir_ + "/eroded.csv");
+        if (!resumed_) eroded_file_.line(eroded_header());
+    }
     series_ = LineFile(series_path);
-    if (!resumed_) series_.line(series_header());
+    if (!resumed_) series_.line(surface_.on() ? series_header() + "," + surface_series_header() : series_header());
     // faults.csv: a run resumed from a checkpoint older than the fault table
     // (faults_bytes = 0) starts it at the resume.
     const std::string faults_path = dir_ + "/faults.csv";
@@ -279,7 +297,11 @@ WedgeMeasures WedgeRun::write_row() {
     r.front_thrust_x = fault_counts_.front_x;
     r.stage = st_.stage;
     r.decoupling_x = decoupling_x_;
-    series_.line(series_line(r, series_columns_));
+    if (surface_.on())
+        series_.line(series_line(r, series_columns_) + "," +
+                     surface_series_line(surface_.ledger(sim_.particles, st_.surface, r.S, r.m.wedge_area)));
+    else
+        series_.line(series_line(r, series_columns_));
     const double secs = elapsed();
     const double rate = static_cast<double>(sim_.step_count - rate_from_step_) / std::max(secs - rate_from_secs_, 1e-9);
     rate_from_step_ = sim_.step_count;
@@ -307,7 +329,14 @@ void WedgeRun::measure_structures() {
     if (sim_.step_count > 0 && st_.outputs > 0) {
         std::vector<double> radius(x_now.size());
         for (std::size_t s = 0; s < sim_.particles.size(); ++s) radius[sim_.particles.id[s]] = sim_.particles.radius[s];
-        decoupling_x_ = basal_decoupling_x(st_.x_then, x_now, radius, interval_m(), kDecouplingBinOverH0 * h0_);
+        if (st_.surface.removed > 0) {  // eroded discs, parked below the base, are not on it
+            std::vector<Vec2> x_then = st_.x_then;
+            for (std::size_t s = 0; s < sim_.particles.size(); ++s)
+                if (sim_.particles.flags[s] & kFlagRemoved) x_then[sim_.particles.id[s]] = {std::nan(""), std::nan("")};
+            decoupling_x_ = basal_decoupling_x(x_then, x_now, radius, interval_m(), kDecouplingBinOverH0 * h0_);
+        } else {
+            decoupling_x_ = basal_decoupling_x(st_.x_then, x_now, radius, interval_m(), kDecouplingBinOverH0 * h0_);
+        }
         accumulate_gradient(st_.F_total, strain_.F);
         found = detect_faults(x_now, strain_.shear, fault_params_).faults;
     } else if (st_.F_total.size() < x_now.size()) {
@@ -421,6 +450,7 @@ std::string WedgeRun::state_bytes() {
     st_.series_bytes = file_bytes(dir_ + "/series.csv");
     st_.faults_bytes = file_bytes(dir_ + "/faults.csv");
     st_.log_bytes = file_bytes(dir_ + "/log.txt");
+    if (surface_.on()) st_.surface.eroded_bytes = file_bytes(dir_ + "/eroded.csv");
     return encode_checkpoint(sim_, st_, cfg_hash_);
 }
 
@@ -429,6 +459,7 @@ std::string WedgeRun::save_checkpoint(const std::string& bytes) {
     // never expects rows that did not reach the disk.
     series_.sync();
     faults_file_.sync();
+    if (eroded_file_.is_open()) eroded_file_.sync();
     log_.sync();
     const std::string path = write_checkpoint(dir_ + "/checkpoint", sim_.step_count, bytes);
     last_checkpoint_time_ = std::chrono::steady_clock::now();

@@ -28,6 +28,7 @@
 #include "orodem/render/particle_view.hpp"
 #include "orodem/run/observer.hpp"
 #include "orodem/run/run_log.hpp"
+#include "orodem/run/surface_erosion.hpp"
 #include "orodem/setup/wedge.hpp"
 
 namespace orodem {
@@ -113,6 +114,8 @@ private:
     std::chrono::steady_clock::time_point last_checkpoint_time_;
     std::optional<HealthProblem> stop_for_;  // run.on_domain_exit = "stop": set by check(), carried out by output()
     ViewOptions view_;
+    SurfaceErosion surface_;            // [surface]: erosion every surface.interval_steps (off: no-op)
+    LineFile eroded_file_;              // eroded.csv, with [surface] only
     bool overlap_warned_ = false;       // stderr once; log.txt at every output
     bool wall_warned_ = false;
 };

@@ -20,6 +20,8 @@ namespace orodem {
 enum ParticleFlag : std::uint8_t {
     kFlagFixed = 1u << 0,  ///< held fixed in space (inv_mass = inv_inertia = 0)
     kFlagAsleep = 1u << 1, ///< in a sleeping zone: moves rigidly, inv_mass = inv_inertia = 0 (engine/sleep.cpp)
+    kFlagRemoved = 1u << 2, ///< eroded: fixed (kFlagFixed too) and parked below the base, out of every contact
+                            ///< and measure; its slot and id stay (run/surface_erosion.hpp)
 };
 
 struct ParticleStore {

@@ -1,0 +1,155 @@
+// Erosion in the running wedge ([surface], run/surface_erosion.hpp) with the
+// real binary on the tiny exp1 (h0 = 6 m): the ledger closes at every
+// output, eroded.csv lists every removed disc, an eroding run interrupted
+// and resumed gives the bytes of an uninterrupted one (1 and 2 threads), and
+// the config errors are one line with exit 2. (Without [surface] the outputs
+// are those of earlier versions: tests/physics/test_golden.cpp and
+// scripts/same-outputs.)
+#include <gtest/gtest.h>
+
+#include <signal.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/checkpoint_util.hpp"
+#include "cli/cli_util.hpp"
+
+namespace fs = std::filesystem;
+using namespace cli;
+
+namespace {
+
+class Surface : public OrodemTest {
+protected:
+    fs::path config(const std::string& name, const std::string& extra) { return write_tiny_exp1_with(work_, name, extra); }
+};
+
+// Elevation law, fast enough that the tiny wedge loses particles from S ≈ 1.
+const std::string kElevation = "[surface]\nlaw = \"elevation\"\nk = 2.0\n";
+const std::string kLonger = " --set wedge.s_max=1.5 --set wedge.pro_margin=4 --set wedge.output_ds=0.1";
+
+std::vector<std::vector<std::string>> csv(const std::string& text) {
+    std::vector<std::vector<std::string>> rows;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        std::vector<std::string> f;
+        std::istringstream l(line);
+        for (std::string x; std::getline(l, x, ',');) f.push_back(x);
+        rows.push_back(f);
+    }
+    return rows;
+}
+
+std::size_t column(const std::vector<std::string>& header, const std::string& name) {
+    for (std::size_t k = 0; k < header.size(); ++k)
+        if (header[k] == name) return k;
+    ADD_FAILURE() << "no column " << name;
+    return 0;
+}
+
+}  // namespace
+
+TEST_F(Surface, TheLedgerClosesAtEveryOutputAndErodedCsvListsEveryRemovedDisc) {
+    const fs::path cfg = config("eroding.toml", kElevation);
+    const Result r = orodem("run " + quote(cfg.string()) + " --out A --threads 2" + kLonger);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto rows = csv(slurp(work_ / "A" / "series.csv"));
+    ASSERT_GE(rows.size(), 16u);
+    const auto& h = rows.front();
+    const std::size_t in = column(h, "influx_area"), er = column(h, "eroded_area"), st = column(h, "stored_area"),
+                      err = column(h, "ledger_error"), nd = column(h, "eroded_discs"), asked = column(h, "erosion_asked"),
+                      S = column(h, "S");
+    for (std::size_t k = 1; k < rows.size(); ++k) {
+        const double influx = std::stod(rows[k][in]), eroded = std::stod(rows[k][er]), stored = std::stod(rows[k][st]);
+        EXPECT_NEAR(influx, std::stod(rows[k][S]), 1e-5) << k;
+        EXPECT_LE(std::fabs(influx - eroded - stored), 0.005 * influx + 1e-12) << "row " << k;
+        EXPECT_LE(std::fabs(std::stod(rows[k][err])), 0.005 * influx + 1e-12) << "row " << k;
+    }
+    const auto& last = rows.back();
+    const double eroded = std::stod(last[er]);
+    EXPECT_GT(eroded, 0.0) << "nothing was eroded";
+    // The taken area follows the asked one within the columns' remainders.
+    EXPECT_NEAR(eroded, std::stod(last[asked]), 0.5 * std::stod(last[asked]));
+    const auto e = csv(slurp(work_ / "A" / "eroded.csv"));
+    ASSERT_FALSE(e.empty());
+    EXPECT_EQ(e.front().size(), 5u);
+    EXPECT_EQ(e.size() - 1, static_cast<std::size_t>(std::stoul(last[nd])));
+    for (std::size_t k = 1; k < e.size(); ++k) {
+        EXPECT_GE(std::stod(e[k][3]), std::stod(e[k][4]) - 1e-12) << "max burial below the initial depth, row " << k;
+        EXPECT_GT(std::stod(e[k][2]), 0.0);
+    }
+}
+
+TEST_F(Surface, AnInterruptedErodingRunResumesToTheBytesOfAnUninterruptedOne) {
+    // The first checkpoint after step 0 comes at S = 1.2, after the first
+    // particles were removed; the run is stopped right after it.
+    const fs::path cfg = config("eroding.toml", kElevation);
+    std::string text = slurp(cfg);
+    text.replace(text.find("[run]\n"), 6, "[run]\ncheckpoint_every_outputs = 12\n");
+    write(cfg, text);
+    ASSERT_EQ(orodem("run " + quote(cfg.string()) + " --out A --threads 1" + kLonger).status, 0);
+    ASSERT_GT(csv(slurp(work_ / "A" / "eroded.csv")).size(), 1u);
+    const fs::path run = work_ / "B";
+    const Proc p = start({"run", cfg.string(), "--out", run.string(), "--threads", "1", "--set", "wedge.s_max=1.5",
+                          "--set", "wedge.pro_margin=4", "--set", "wedge.output_ds=0.1"},
+                         root_ / "B");
+    ASSERT_TRUE(signal_after_checkpoint(p, run, {SIGTERM})) << slurp(p.err);
+    ASSERT_EQ(wait_for(p), 143) << slurp(p.err);
+    ASSERT_LT(slurp(run / "series.csv").size(), slurp(work_ / "A" / "series.csv").size()) << "was not interrupted";
+    ASSERT_GT(csv(slurp(run / "eroded.csv")).size(), 1u) << "interrupted before any erosion";
+    const Result r = orodem("run " + quote((run / "config.toml").string()) + " --out B --resume --threads 2");
+    ASSERT_EQ(r.status, 0) << r.err;
+    expect_same_outputs(work_ / "A", run);
+    EXPECT_EQ(slurp(run / "eroded.csv"), slurp(work_ / "A" / "eroded.csv"));
+}
+
+TEST_F(Surface, ConfigErrorsAreOneLineWithExit2) {
+    struct Case {
+        std::string extra, says;
+    };
+    const std::vector<Case> cases = {
+        {"[surface]\nk = 0.3\n", "missing required key 'surface.law'"},
+        {"[surface]\nlaw = \"elevaton\"\n", "did you mean 'elevation'"},
+        {"[surface]\nlaw = \"slope\"\nk = 0.3\n", "unknown key 'surface.k'"},
+        {"[surface]\nlaw = \"elevation\"\nk = -1\n", "surface.k"},
+        {"[surface]\nlaw = \"elevation\"\ninterval_steps = 0\n", "surface.interval_steps"},
+        {"[surface]\nlaw = \"diffusion\"\nends = \"open\"\n", "surface.ends"},
+        {"surface = 3\n", "must be a table [surface]"},
+    };
+    int k = 0;
+    for (const Case& c : cases) {
+        const fs::path cfg = config("bad" + std::to_string(k++) + ".toml", "");
+        // Top-level keys go before the first table.
+        write(cfg, c.extra.rfind("[", 0) == 0 ? slurp(cfg) + c.extra : c.extra + slurp(cfg));
+        const Result r = orodem("check " + quote(cfg.string()));
+        EXPECT_EQ(r.status, 2) << c.extra << r.err;
+        EXPECT_NE(r.err.find(c.says), std::string::npos) << c.extra << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    }
+    // A table the wedge experiments alone read.
+    write(work_ / "settle.toml", "[run]\nexperiment = \"settle\"\n[surface]\nlaw = \"none\"\n");
+    const Result r = orodem("check settle.toml");
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("only read by the wedge experiments"), std::string::npos) << r.err;
+}
+
+TEST_F(Surface, WithoutTheTableNothingIsResolvedAndTheColumnsAreTheOldOnes) {
+    const fs::path plain = config("plain.toml", ""), off = config("off.toml", "[surface]\nlaw = \"none\"\n");
+    ASSERT_EQ(orodem("run " + quote(plain.string()) + " --out A --threads 2").status, 0);
+    ASSERT_EQ(orodem("run " + quote(off.string()) + " --out B --threads 2").status, 0);
+    EXPECT_EQ(slurp(work_ / "A" / "config.toml").find("surface"), std::string::npos);
+    EXPECT_FALSE(fs::exists(work_ / "A" / "eroded.csv"));
+    EXPECT_NE(slurp(work_ / "B" / "config.toml").find("[surface]"), std::string::npos);
+    // law = "none": the same run, with the ledger's columns after the others.
+    const auto a = csv(slurp(work_ / "A" / "series.csv")), b = csv(slurp(work_ / "B" / "series.csv"));
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t k = 0; k < a.size(); ++k) {
+        ASSERT_EQ(b[k].size(), a[k].size() + 7) << k;
+        EXPECT_TRUE(std::equal(a[k].begin(), a[k].end(), b[k].begin())) << k;
+    }
+}

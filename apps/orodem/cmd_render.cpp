@@ -77,10 +77,9 @@ int cmd_render(const RenderArgs& a) {
         refuse_existing({a.out}, a.force, "render");
         const std::vector<std::size_t> chosen = nearest_snapshots(run.snaps, a.at.empty() ? default_stack(run.snaps) : a.at);
         RunFaultLines faults;
-        if (is_strain(a.color_by)) {
+        if (is_strain(a.color_by) || a.color_by == ColorBy::damage)
             for (std::size_t k : chosen) require_colour_data(run, k, a.color_by);  // exit 2, nothing written
-            faults = fault_lines_of(run);
-        }
+        if (is_strain(a.color_by)) faults = fault_lines_of(run);
         const fs::path parent = fs::absolute(a.out).parent_path();
         make_dirs(parent.string());
         const PictureInfo info = render_run_figure(run, chosen, a.color_by, a.width, a.out, &faults, frame);
@@ -143,10 +142,9 @@ int cmd_movie(const MovieArgs& a) {
     o.frame = frame_choice(a.xlim, a.title);
     movie_frames(run.snaps.size(), o);          // exit 2 before anything is drawn
     saved_run_view(run, a.width, o.frame);
-    if (is_strain(a.color_by)) {
+    if (is_strain(a.color_by) || a.color_by == ColorBy::damage)
         require_colour_data(run, run.snaps.size() - 1, a.color_by);  // exit 2, nothing written
-        o.faults = fault_lines_of(run);
-    }
+    if (is_strain(a.color_by)) o.faults = fault_lines_of(run);
     const std::size_t frames = render_run_movie(run, o, a.out);
     fmt::print("movie: {} snapshots, each shown {:.3g} s ({}), {:g} s at {:g} frames per second ({} frames) in {}\n",
                run.snaps.size(), a.seconds / static_cast<double>(run.snaps.size()),

@@ -57,6 +57,13 @@ TEST_F(Layers, OneMaterialInTwoLayersGivesTheBytesOfTheOneMaterialRun) {
     const std::string resolved = slurp(work_ / "B" / "config.toml");
     EXPECT_NE(resolved.find("[[layers]]\nmaterial = 'same'\nthickness = 0.3\n"), std::string::npos) << resolved;
     EXPECT_EQ(orodem("check " + quote((work_ / "B" / "config.toml").string())).status, 0);
+    // --color-by damage draws a layered run and refuses a one-material one (exit 2, nothing written).
+    EXPECT_EQ(orodem("render B --color-by damage --out damage.png").status, 0);
+    EXPECT_TRUE(fs::exists(work_ / "damage.png"));
+    const Result plain_damage = orodem("render A --color-by damage --out plain.png");
+    EXPECT_EQ(plain_damage.status, 2);
+    EXPECT_NE(plain_damage.err.find("holds no damage array: only a layered run"), std::string::npos) << plain_damage.err;
+    EXPECT_FALSE(fs::exists(work_ / "plain.png"));
 }
 
 TEST_F(Layers, AnInterruptedWeakeningRunResumesToTheBytesOfAnUninterruptedOne) {
@@ -80,8 +87,8 @@ TEST_F(Layers, SnapshotsCarryMaterialLayerAndDamageWhereTheConfigPutsThem) {
     // The Python reader's view of the last snapshot: each particle (a
     // cluster's discs together, by their mean height at the cut, h0 minus
     // initial_depth) is in the weak material (id 1 in name order: sand 0,
-    // weak 1) and layer 0 (2 on the retroside) below 0.25 h0, else sand and
-    // layer 1 (3); the damage of the resting retroside beyond 1.5 h0 (the
+    // weak 1) and layer 0 (on either side) below 0.25 h0, else sand and
+    // layer 1; the damage of the resting retroside beyond 1.5 h0 (the
     // contacts' first settling only, about 0.05 d̄) is far below that where
     // the layer shears (more than a mean diameter of sliding).
     const std::string py =
@@ -92,7 +99,7 @@ TEST_F(Layers, SnapshotsCarryMaterialLayerAndDamageWhereTheConfigPutsThem) {
         "weak = height < 0.25 * h0\n"
         "one_side = np.ones(len(cl), bool)\n"
         "for c in np.unique(cl[cl >= 0]):\n    one_side[cl == c] = len(set(s['side'][cl == c].tolist())) == 1\n"
-        "want = np.where(weak, 0, 1) + np.where(s['side'] == 1, 2, 0)\n"
+        "want = np.where(weak, 0, 1)\n"
         "print('material_ok', np.mean(s['material'] == np.where(weak, 1, 0)),"
         " 'layer_ok', np.mean((s['layer'] == want)[one_side]))\n"
         "d = s['damage']\nprint('resting', np.median(d[s['x'] > 1.5 * h0]), 'max', d.max())\n";

@@ -293,6 +293,7 @@ struct ConfigBasics {
     double output_ds = WedgeConfig{}.output_ds;        // [-]
     double pro_margin = WedgeConfig{}.pro_margin;      // [h0]
     double retro_length = WedgeConfig{}.retro_length;  // [h0]
+    std::size_t layers = 0;                            // a layered wedge's [[layers]]; 0: one material
 };
 /// IoError when the file is not TOML, ConfigError without a positive packing.h0.
 ConfigBasics read_config_basics(const std::string& path);

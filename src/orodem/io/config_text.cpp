@@ -163,6 +163,7 @@ ConfigBasics read_config_basics(const std::string& path) {
     b.output_ds = config["wedge"]["output_ds"].value_or(b.output_ds);
     b.pro_margin = config["wedge"]["pro_margin"].value_or(b.pro_margin);
     b.retro_length = config["wedge"]["retro_length"].value_or(b.retro_length);
+    if (const toml::array* l = config["layers"].as_array()) b.layers = l->size();
     return b;
 }
 
@@ -174,6 +175,7 @@ ConfigBasics config_basics(const Config& c) {
     b.output_ds = c.wedge.output_ds;
     b.pro_margin = c.wedge.pro_margin;
     b.retro_length = c.wedge.retro_length;
+    b.layers = c.layers.size();
     return b;
 }
 

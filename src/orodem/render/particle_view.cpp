@@ -30,6 +30,23 @@ Colour horizon_colour(double depth, double band, bool retro) {
     return retro ? shade(c, kRetroShade) : c;
 }
 
+/// A layered run's horizons: each layer (from the base, the same id on both
+/// sides) in its own hue family, the bands of initial depth as a light and a
+/// dark tone of it, so horizons stay visible within each layer.
+constexpr Colour kLayerHues[][2] = {
+    {{0.93, 0.80, 0.55}, {0.80, 0.62, 0.35}},  // sand
+    {{0.62, 0.74, 0.90}, {0.40, 0.55, 0.78}},  // blue
+    {{0.74, 0.88, 0.62}, {0.52, 0.70, 0.40}},  // green
+    {{0.92, 0.66, 0.62}, {0.78, 0.44, 0.40}},  // brick
+    {{0.80, 0.72, 0.90}, {0.60, 0.50, 0.75}},  // lilac
+    {{0.70, 0.70, 0.70}, {0.48, 0.48, 0.48}},  // grey
+};
+Colour layer_colour(std::uint8_t layer, double depth, double band, bool retro) {
+    const long k = static_cast<long>(std::floor(std::max(0.0, depth) / band));
+    const Colour c = kLayerHues[layer % std::size(kLayerHues)][k % 2];
+    return retro ? shade(c, kRetroShade) : c;
+}
+
 /// The displacement colour map at s in [0, 1] (clamped): light grey, yellow,
 /// orange-red, dark red, linear between the stops.
 Colour displacement_colour(double s) {
@@ -142,7 +159,9 @@ void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layou
     auto px = [&](double x) { return x0 + (x - o.x_min) * L.scale; };
     auto py = [&](double y) { return top + (o.y_max - y) * L.scale; };
     const bool by_disp = o.color_by == ColorBy::displacement, by_strain = is_strain(o.color_by);
+    const bool by_damage = o.color_by == ColorBy::damage;
     const ParticleStore& p = *panel.p;
+    const bool layered = p.has_materials();  // layer hues and damage (a layered run's snapshots)
     c.clip(x0, top, L.plot_w, L.plot_h);
     bool cut_above = false;  // material reaching over the frame's top edge
     // In id order (the order of a snapshot's discs), so that a picture drawn
@@ -156,7 +175,9 @@ void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layou
         cut_above = cut_above || y + r > o.y_max;
         if (y - r > o.y_max) continue;
         const Colour col = by_strain ? bar_colour(g, panel.strain ? (*panel.strain)[s] : 0.0)
-                           : !by_disp ? horizon_colour(p.initial_depth[s], o.band, p.side[s] != 0)
+                           : by_damage ? bar_colour(g, layered ? p.damage[s] : 0.0)
+                           : !by_disp ? (layered ? layer_colour(p.layer[s], p.initial_depth[s], o.band, p.side[s] != 0)
+                                                 : horizon_colour(p.initial_depth[s], o.band, p.side[s] != 0))
                            : panel.displacement && full > 0.0 ? bar_colour(g, (*panel.displacement)[s] * (g.hi / full))
                                                               : bar_colour(g, 0.0);
         c.disc(px(x), py(y), r * L.scale, col);
@@ -232,6 +253,7 @@ ViewOptions run_view(const ConfigBasics& b, int width_px) {
     v.width_px = width_px;
     v.title = b.experiment;
     v.output_ds = b.output_ds;
+    v.layers = b.layers;
     return v;
 }
 
@@ -263,6 +285,20 @@ Legend picture_legend(const ViewOptions& o) {
         g.log_scale = true;
         for (double t = g.lo; t <= g.hi * (1 + 1e-9); t *= 10.0) g.ticks.push_back(t);
         g.line_keys = {"pro-vergent fault", "retro-vergent fault"};
+        return g;
+    }
+    if (o.color_by == ColorBy::damage) {
+        g.title = "damage: sliding distance of a particle's contacts [mean disc diameters], log scale";
+        g.lo = kDamageLo;
+        g.hi = kDamageHi;
+        g.log_scale = true;
+        for (double t = g.lo; t <= g.hi * (1 + 1e-9); t *= 10.0) g.ticks.push_back(t);
+        return g;
+    }
+    if (o.layers > 0) {  // a layered run: one hue family per layer, bands of initial depth within it
+        g.title = fmt::format("layers from the base (bands of initial depth, {:g} h0 thick, in each)", o.band / o.h0);
+        for (std::size_t l = 0; l < o.layers; ++l)
+            g.swatches.push_back({fmt::format("layer {}", l + 1), kLayerHues[l % std::size(kLayerHues)][0]});
         return g;
     }
     g.title = fmt::format("horizons: bands of initial depth, {:g} h0 thick", o.band / o.h0);

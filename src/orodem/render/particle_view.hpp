@@ -52,11 +52,12 @@ namespace orodem {
 
 /// What a picture's discs are coloured by (orodem render and movie --color-by): the initial-depth horizons, the
 /// relative displacement since the previous output, the shear strain of the output interval, or since S = 0.
-enum class ColorBy { horizons, displacement, strain, strain_total };
+enum class ColorBy { horizons, displacement, strain, strain_total, damage };
 inline constexpr Named<ColorBy> kColorBys[] = {{ColorBy::horizons, "horizons"},
                                                {ColorBy::displacement, "displacement"},
                                                {ColorBy::strain, "strain"},
-                                               {ColorBy::strain_total, "strain_total"}};
+                                               {ColorBy::strain_total, "strain_total"},
+                                               {ColorBy::damage, "damage"}};
 constexpr const char* name_of(ColorBy v) { return name_in(kColorBys, v); }
 
 /// Top of the displacement colour bar: relative displacement / (ΔS h0) [-].
@@ -65,6 +66,8 @@ inline constexpr double kDisplacementFull = 0.3;
 inline constexpr double kStrainLo = 1e-3, kStrainHi = 1.0;
 /// The finite shear strain bar (log scale): γ since S = 0 [-].
 inline constexpr double kStrainTotalLo = 1e-2, kStrainTotalHi = 10.0;
+/// The damage bar of a layered run (log scale): sliding distance [mean disc diameters].
+inline constexpr double kDamageLo = 1e-2, kDamageHi = 10.0;
 
 /// A fault drawn on a strain map: a segment from root to tip [m] (the run's
 /// coordinates: x from the S point, y from the base), and its vergence (+1
@@ -87,11 +90,12 @@ struct ViewOptions {
     double x_s = 0;                // S point [m]
     int width_px = 1600;           // picture width; the height follows from the frame's aspect ratio
     double band = 1;               // horizon band thickness [m]
-    ColorBy color_by = ColorBy::horizons;  // horizons | displacement | strain | strain_total
+    ColorBy color_by = ColorBy::horizons;  // horizons | displacement | strain | strain_total | damage (layered runs)
     double output_ds = 0;          // the run's ΔS between outputs (named in the strain legend; 0: not named)
     std::string title;             // header text, e.g. "exp1"
     bool per_frame_scale = false;  // displacement values are normalised per frame (old snapshots)
     double displacement_quantile = 0.99;  // per_frame_scale only: of the positive values, the full-colour one
+    std::size_t layers = 0;        // a layered run's layers from the base (the horizons legend's hues); 0: one material
 };
 
 /// The frame of every picture of a run (see the note above): x from half an

@@ -44,6 +44,15 @@ Frame read_frame(const SavedRun& run, std::size_t k) {
         f.p.initial_depth[s] = depth[i];
         f.p.side[s] = side[i] != 0 ? 1 : 0;
     }
+    // A layered run's snapshots: layer and damage (the layer hues, --color-by damage).
+    const auto* layer = d.find("layer");
+    const auto* damage = d.find("damage");
+    if (layer && damage && layer->size() == f.p.size() && damage->size() == f.p.size()) {
+        f.p.material.assign(f.p.size(), 0);
+        f.p.layer.resize(f.p.size());
+        f.p.damage = *damage;
+        for (std::size_t s = 0; s < f.p.size(); ++s) f.p.layer[s] = static_cast<std::uint8_t>((*layer)[s]);
+    }
     if (f.p.size() == 0) throw IoError(fmt::format("'{}': snapshot holds no discs", vtu));
     if (k == 0) return f;  // no previous output to move from
     // Slots follow file order (p.add), so the arrays apply as they are.
@@ -74,6 +83,10 @@ std::vector<std::size_t> nearest_snapshots(const std::vector<Snapshot>& snaps, c
 namespace {
 
 [[noreturn]] void no_strain_error(const std::string& file, ColorBy color_by) {
+    if (color_by == ColorBy::damage)
+        throw ConfigError(fmt::format("'{}' holds no damage array: only a layered run (materials and [[layers]] in its "
+                                      "config) has one; draw this run with --color-by horizons, displacement or strain",
+                                      file));
     throw ConfigError(fmt::format("'{}' holds no {} array (written by an orodem before strain maps): draw this run "
                                   "with --color-by horizons or displacement",
                                   file, color_by == ColorBy::strain_total ? "shear_strain_total" : "shear_strain"));
@@ -93,6 +106,7 @@ Panel frame_panel(const Frame& f, ColorBy color_by, const std::vector<FaultLine>
 }
 
 bool has_colour_data(const SavedRun& run, std::size_t k, ColorBy color_by) {
+    if (color_by == ColorBy::damage) return read_frame(run, k).p.has_materials();
     if (!is_strain(color_by)) return true;
     const Frame f = read_frame(run, k);
     return (color_by == ColorBy::strain_total ? f.strain_total : f.strain).size() == f.p.size();

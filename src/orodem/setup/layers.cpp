@@ -80,7 +80,6 @@ void assign_layers(const Config& c, ParticleStore& p) {
     p.material.assign(n, 0);
     p.layer.assign(n, 0);
     p.damage.assign(n, 0.0);
-    const std::size_t n_pro = c.layers.size();
     for (std::size_t s = 0; s < n; ++s) {
         Vec2 at = p.x[s];
         if (p.cluster[s] >= 0) {
@@ -92,7 +91,7 @@ void assign_layers(const Config& c, ParticleStore& p) {
         std::size_t l = 0;
         double top = stack[0].thickness * h0;  // top of band l above the base [m]
         while (l + 1 < stack.size() && at.y >= top) top += stack[++l].thickness * h0;
-        p.layer[s] = static_cast<std::uint8_t>((retro ? n_pro : 0) + l);
+        p.layer[s] = static_cast<std::uint8_t>(l);
         p.material[s] = material_id(c, stack[l].material);
         const double rho = c.materials[p.material[s]].m.density;  // [kg/m³]
         p.mass[s] = rho * std::numbers::pi * p.radius[s] * p.radius[s];

@@ -20,8 +20,8 @@ MaterialTable material_table(const Config& c);
 /// band of heights above the base holds it, the bands stacked from the base
 /// in h0, everything above the top band in the top layer. Sets the masses
 /// from each material's density (inverse masses of free discs as
-/// set_free_inertia without a floor) and zero damage. Layer ids: the
-/// proside's from 0 at the base, then the retroside's.
+/// set_free_inertia without a floor) and zero damage. Layer ids: from 0 at
+/// the base on each side (its stack's index; `side` tells the two apart).
 void assign_layers(const Config& c, ParticleStore& p);
 
 /// Every particle of p in material `name` of c.materials (layer 0): the

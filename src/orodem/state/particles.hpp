@@ -44,7 +44,7 @@ struct ParticleStore {
     // (Simulation::materials), so a one-material run's state, checkpoints and
     // outputs hold none of them.
     std::vector<std::uint8_t> material; // material id (MaterialTable::materials)
-    std::vector<std::uint8_t> layer;    // layer id: the incoming plate's layers from the base up, then the retroside's
+    std::vector<std::uint8_t> layer;    // layer id: the index in its side's stack of layers, 0 at the base
     std::vector<double> damage;         // D: sliding distance of the particle's contacts [mean disc diameters]
 
     std::vector<std::uint32_t> slot_of_id;  // id -> current slot

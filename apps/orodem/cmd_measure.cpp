@@ -56,7 +56,7 @@ void measure_run(const std::string& run_dir, const std::string& prefix, bool hea
         ParticleStore p;
         for (std::size_t i = 0; i < d.x.size(); ++i) p.add(d.x[i], radius[i], 1.0);
         if (p.size() == 0) throw IoError(fmt::format("'{}': snapshot holds no discs", vtu));
-        if (k == 0) pp.y_mean = undeformed_surface(p, pp);
+        if (k == 0) pp.y_mean = undeformed_surface(p, pp, c);
         std::vector<double> r_now;
         std::vector<Vec2> x_now = positions_by_id(d, vtu, &r_now);
         SeriesRow r;

@@ -409,6 +409,10 @@ void read_surface(Config& c, const toml::table& root, const std::string& file) {
         throw ConfigError(fmt::format("{}: table [surface] is only read by the wedge experiments, not run.experiment = "
                                       "\"{}\"; remove it or set run.experiment to critical-wedge, exp1, exp2 or exp3",
                                       where(file, n->source()), c.run.experiment));
+    if (experiment_of(c).push_wall)
+        throw ConfigError(fmt::format("{}: table [surface] is not available for run.experiment = \"sandbox\" yet "
+                                      "(erosion is tied to the conveyor's incoming plate); remove it",
+                                      where(file, n->source())));
     c.resolved.insert_or_assign("surface", toml::table{});
     toml::table& o = *c.resolved.get("surface")->as_table();
     Reader r(n->as_table(), "surface.", file, o, toml::source_region{});
@@ -457,10 +461,10 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
     for (auto&& [k, v] : root) {
         static const std::set<std::string> known = {"run",       "wedge",     "material", "packing",      "numerics",
                                                     "calibrate", "materials", "layers",   "retro_layers", "friction_pairs",
-                                                    "surface"};
+                                                    "surface",   "sandbox"};
         if (!known.count(std::string(k.str())))
             throw ConfigError(fmt::format("{}: unknown key '{}' = {}{}; allowed top-level tables: run, wedge, material, packing, "
-                                          "numerics, calibrate, materials, layers, retro_layers, friction_pairs, surface",
+                                          "numerics, calibrate, materials, layers, retro_layers, friction_pairs, surface, sandbox",
                                           where(file, k.source()), k.str(), show(v), did_you_mean(k.str(), known)));
     }
 
@@ -507,7 +511,8 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
         } else {
             refuse_traction_keys(r, in, "wedge", {"traction_gain", "drag_gain"});
         }
-        w.pro_margin = r.number("pro_margin", w.pro_margin, {2.0, 1000.0, false, false});
+        if (!experiment_of(c).push_wall)  // the sandbox's layer length is sandbox.length
+            w.pro_margin = r.number("pro_margin", w.pro_margin, {2.0, 1000.0, false, false});
         if (!experiment_of(c).backstop)
             w.retro_length = r.number("retro_length", w.retro_length, {1.0, 1000.0, false, false});
         w.toe_threshold = r.number("toe_threshold", w.toe_threshold, {0.0, 10.0, true, false});
@@ -525,6 +530,22 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
     } else if (const toml::node* n = root.get("wedge")) {
         throw ConfigError(fmt::format("{}: table [wedge] is only read by the wedge experiments, not run.experiment = \"{}\"; "
                                       "remove it or set run.experiment to critical-wedge, exp1, exp2 or exp3",
+                                      where(file, n->source()), c.run.experiment));
+    }
+    if (experiment_of(c).push_wall) {
+        auto [in, o] = section("sandbox");
+        Reader r(in, "sandbox.", file, *o, none);
+        SandboxConfig& b = c.sandbox;
+        b.length = r.number("length", b.length, {1.0, 1000.0, false, false});
+        b.surface_slope_deg = r.number("surface_slope_deg", b.surface_slope_deg, {0.0, 60.0, false, false});
+        // The wall's travel must leave the pushed material between the walls.
+        if (c.wedge.s_max > b.length - 0.5)
+            r.refuse("length", fmt::format("must be at least wedge.s_max + 0.5 = {:g} h0 (the moving wall travels "
+                                           "s_max h0 toward the fixed end wall)", c.wedge.s_max + 0.5));
+        r.finish();
+    } else if (const toml::node* n = root.get("sandbox")) {
+        throw ConfigError(fmt::format("{}: table [sandbox] is only read by run.experiment = \"sandbox\", not \"{}\"; "
+                                      "remove it or set run.experiment = \"sandbox\"",
                                       where(file, n->source()), c.run.experiment));
     }
     {
@@ -570,7 +591,8 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
             // Incoming plate long enough to reach s_max, plus the retroside cover.
             const WedgeConfig& w = c.wedge;
             const double retro = experiment_of(c).backstop ? 0.0 : w.retro_length;
-            const double derived = (w.s_max + w.pro_margin + retro) * p.h0;
+            const double derived = experiment_of(c).push_wall ? c.sandbox.length * p.h0
+                                                              : (w.s_max + w.pro_margin + retro) * p.h0;
             // A run directory's config.toml holds the derived value; that exact
             // value is accepted so the file loads again (orodem run --resume).
             if (in && in->get("length") && r.number("length", derived, positive()) != derived)

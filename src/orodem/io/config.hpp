@@ -35,7 +35,7 @@ inline constexpr Named<PackingKind> kPackingKinds[] = {
 constexpr const char* name_of(PackingKind v) { return name_in(kPackingKinds, v); }
 
 struct RunConfig {
-    std::string experiment = "settle";  // required: settle | critical-wedge | exp1 | exp2 | exp3
+    std::string experiment = "settle";  // required: settle | critical-wedge | exp1 | exp2 | exp3 | sandbox
                                         // | biaxial | basal-friction | repose (orodem calibrate)
     std::uint64_t seed = 1;             // master seed; packing.seed defaults to it [-]
     int threads = 0;                    // OpenMP threads, 0 = all cores [-]
@@ -76,6 +76,15 @@ struct WedgeConfig {
     double inertia_floor = 1.0;       // discs smaller than inertia_floor·r_min move with the mass and moment of
                                       // inertia of a disc of that radius (their weight stays ρ π R² g), and the
                                       // automatic dt follows the lightest inertia; 1 = off (docs/physics.md) [-]
+};
+
+/// [sandbox]: the push-wall sandbox (run.experiment = "sandbox"; docs/experiments.md
+/// "The push-wall sandbox"): a layer between a wall that moves right at wedge.v
+/// and a fixed wall, on a base at rest with friction wedge.mu_bp.
+struct SandboxConfig {
+    double length = 10.0;             // layer length from the moving wall to the fixed end wall [h0]
+    double surface_slope_deg = 0.0;   // 0: a flat layer h0 thick; > 0: its top cut to a surface falling at this
+                                      // angle from h0 at the moving wall (GeoMod 2008 Exp. 1: 20) [deg]
 };
 
 struct MaterialConfig {
@@ -204,6 +213,7 @@ struct Config {
     std::string path;                 // file it came from
     RunConfig run;
     WedgeConfig wedge;
+    SandboxConfig sandbox;            // the push-wall sandbox only
     MaterialConfig material;
     PackingConfig packing;
     NumericsConfig numerics;
@@ -232,7 +242,8 @@ struct Experiment {
     const char* name;
     ExperimentClass kind;
     Retroside retroside;  // wedge experiments with a retroside
-    bool backstop;        // the singly vergent critical wedge's rigid backstop at x = 0
+    bool backstop;        // the singly vergent critical wedge's rigid backstop at x = 0 (the sandbox: its fixed end wall)
+    bool push_wall = false;  // the sandbox: a base at rest, the trailing wall pushes the layer toward the fixed end wall
 };
 inline constexpr Experiment kExperiments[] = {
     {"settle", ExperimentClass::settle, Retroside::none, false},
@@ -240,6 +251,9 @@ inline constexpr Experiment kExperiments[] = {
     {"exp1", ExperimentClass::wedge, Retroside::fixed, false},
     {"exp2", ExperimentClass::wedge, Retroside::fixed, false},
     {"exp3", ExperimentClass::wedge, Retroside::coulomb, false},
+    // The push-wall sandbox (GeoMod 2008, issue #67): the set-up of analogue
+    // laboratories, a layer pushed by a wall over a fixed base.
+    {"sandbox", ExperimentClass::wedge, Retroside::none, true, true},
     {"biaxial", ExperimentClass::calibration, Retroside::none, false},
     {"basal-friction", ExperimentClass::calibration, Retroside::none, false},
     {"repose", ExperimentClass::calibration, Retroside::none, false},
@@ -254,7 +268,7 @@ inline const Experiment& experiment_of(const std::string& name) {
 inline const Experiment& experiment_of(const Config& c) { return experiment_of(c.run.experiment); }
 /// True for the calibration experiments (orodem calibrate): biaxial, basal-friction, repose.
 inline bool is_calibration(const Config& c) { return experiment_of(c).kind == ExperimentClass::calibration; }
-/// True for the wedge experiments (critical-wedge, exp1, exp2, exp3).
+/// True for the wedge experiments (critical-wedge, exp1, exp2, exp3, sandbox).
 inline bool is_wedge(const Config& c) { return experiment_of(c).kind == ExperimentClass::wedge; }
 
 /// The keys that do not change a run's results, in one table: a run may be

@@ -163,6 +163,9 @@ ConfigBasics read_config_basics(const std::string& path) {
     b.output_ds = config["wedge"]["output_ds"].value_or(b.output_ds);
     b.pro_margin = config["wedge"]["pro_margin"].value_or(b.pro_margin);
     b.retro_length = config["wedge"]["retro_length"].value_or(b.retro_length);
+    // The sandbox: the wall stands (length - s_max) h0 from the fixed end wall at s_max.
+    if (experiment_of(b.experiment).push_wall)
+        b.pro_margin = config["sandbox"]["length"].value_or(SandboxConfig{}.length) - b.s_max;
     if (const toml::array* l = config["layers"].as_array()) b.layers = l->size();
     return b;
 }
@@ -175,6 +178,7 @@ ConfigBasics config_basics(const Config& c) {
     b.output_ds = c.wedge.output_ds;
     b.pro_margin = c.wedge.pro_margin;
     b.retro_length = c.wedge.retro_length;
+    if (experiment_of(c).push_wall) b.pro_margin = c.sandbox.length - c.wedge.s_max;
     b.layers = c.layers.size();
     return b;
 }

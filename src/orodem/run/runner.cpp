@@ -168,7 +168,7 @@ RunNumbers check_runnable(const Config& c) {
 }
 
 std::string short_plate_warning(const Config& c, const PlateEstimate& pe) {
-    if (c.wedge.pro_margin >= pe.pro_margin_min) return "";
+    if (experiment_of(c).push_wall || c.wedge.pro_margin >= pe.pro_margin_min) return "";
     return fmt::format("wedge.pro_margin = {:g} h0 is shorter than the {:.1f} h0 the deformation front may need by "
                        "S = {:g} (critical taper {:.2f} deg for mu_bp = {:g}; docs/experiments.md \"Plate length\"); "
                        "raise wedge.pro_margin so that the trailing wall does not push the wedge",
@@ -345,6 +345,8 @@ std::vector<Override> extension_overrides(const Config& saved, double S, const s
         throw ConfigError(fmt::format("{}: the run goes to S = {:g} already; --s-max must reach at least one output "
                                       "interval (wedge.output_ds = {:g}) beyond it; nothing was changed",
                                       cmd, w.s_max, w.output_ds));
+    // The sandbox: the layer is sandbox.length whatever S (the loader refuses an S the box cannot take).
+    if (experiment_of(saved).push_wall) return {{"wedge.s_max", fmt::format("{}", S)}};
     const double plate = w.s_max + w.pro_margin;  // [h0] beyond the S point at the start
     // pro_margin such that s_max + pro_margin is the same double: the same
     // packing.length, the same discs, the same walls.

@@ -390,6 +390,7 @@ void WedgeRun::draw() {
 // and the toe, α and D measure the whole plate. Said once per process (never
 // at S = 0: plate_at_trailing_wall).
 void WedgeRun::warn_if_plate_too_short(const WedgeMeasures& m) {
+    if (experiment_of(c_).push_wall) return;  // the sandbox's wedge grows against its wall by design
     const double wall_x = sim_.walls[kWallProEnd].a.x;
     if (wall_warned_ || !plate_at_trailing_wall(m, wall_x, h0_, c_.wedge.v * sim_.time)) return;
     const std::string msg = fmt::format(

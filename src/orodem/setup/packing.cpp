@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "orodem/core/angles.hpp"
 #include "orodem/core/error.hpp"
 
 namespace orodem {
@@ -136,25 +137,42 @@ SettleProgress settle(Simulation& sim, const PackingConfig& pc, double report_in
     }
 }
 
-void cut_layer(ParticleStore& p, double h0) {
+namespace {
+
+/// Keeps the discs (whole clusters, by centre of mass) whose centre lies
+/// below top(x) and compacts the store.
+template <class Top>
+void packing_keep_below(ParticleStore& p, const Top& top) {
     const std::size_t n = p.size();
     // Centre of mass of every cluster (area-weighted), by cluster id.
     std::int32_t max_cluster = -1;
     for (std::size_t s = 0; s < n; ++s) max_cluster = std::max(max_cluster, p.cluster[s]);
-    std::vector<double> cy(static_cast<std::size_t>(max_cluster + 1), 0.0), cm(cy.size(), 0.0);
+    std::vector<double> cx(static_cast<std::size_t>(max_cluster + 1), 0.0), cy(cx.size(), 0.0), cm(cx.size(), 0.0);
     for (std::size_t s = 0; s < n; ++s)
         if (p.cluster[s] >= 0) {
+            cx[static_cast<std::size_t>(p.cluster[s])] += p.mass[s] * p.x[s].x;
             cy[static_cast<std::size_t>(p.cluster[s])] += p.mass[s] * p.x[s].y;
             cm[static_cast<std::size_t>(p.cluster[s])] += p.mass[s];
         }
     std::vector<std::uint8_t> keep(n, 0);
     for (std::size_t s = 0; s < n; ++s) {
-        const double y = p.cluster[s] >= 0
-                             ? cy[static_cast<std::size_t>(p.cluster[s])] / cm[static_cast<std::size_t>(p.cluster[s])]
-                             : p.x[s].y;
-        keep[s] = y < h0 ? 1 : 0;
+        const auto k = static_cast<std::size_t>(p.cluster[s]);
+        const double x = p.cluster[s] >= 0 ? cx[k] / cm[k] : p.x[s].x;
+        const double y = p.cluster[s] >= 0 ? cy[k] / cm[k] : p.x[s].y;
+        keep[s] = y < top(x) ? 1 : 0;
     }
     p.compact(keep);
+}
+
+}  // namespace
+
+void cut_layer_to_slope(ParticleStore& p, double h0, double x_wall, double slope_deg) {
+    const double tan_slope = std::tan(slope_deg * kPi / 180.0);
+    packing_keep_below(p, [&](double x) { return h0 - tan_slope * (x - x_wall); });
+}
+
+void cut_layer(ParticleStore& p, double h0) {
+    packing_keep_below(p, [h0](double) { return h0; });
     for (std::size_t s = 0; s < p.size(); ++s) {
         p.v[s] = {};
         p.omega[s] = 0.0;

@@ -43,6 +43,12 @@ SettleProgress settle(Simulation& sim, const PackingConfig& pc, double report_in
 /// and sets initial_depth = h0 - y. Ids are renumbered densely.
 void cut_layer(ParticleStore& p, double h0);
 
+/// The push-wall sandbox's wedge (sandbox.surface_slope_deg): removes the
+/// discs (clusters, by centre of mass) above the surface y = h0 - tan(slope)
+/// (x - x_wall), which falls from h0 at the wall at x_wall; keeps every other
+/// column as it is (initial_depth included).
+void cut_layer_to_slope(ParticleStore& p, double h0, double x_wall, double slope_deg);
+
 /// Height of the top of the layer's surface, averaged over columns of width
 /// 2 r_max: the mean of the highest disc top y + R in each column [m].
 double mean_surface_height(const ParticleStore& p, double x0, double x1, double column);

@@ -13,6 +13,7 @@
 #include "orodem/core/angles.hpp"
 #include "orodem/core/error.hpp"
 #include "orodem/setup/layers.hpp"
+#include "orodem/setup/packing.hpp"
 #include "orodem/setup/scenario.hpp"
 
 namespace orodem {
@@ -161,6 +162,22 @@ ProfileParams wedge_profile_params(const Config& c) {
     const bool backstop = experiment_of(c).backstop;
     ProfileParams pp;
     pp.column = w.column_width;
+    if (experiment_of(c).push_wall) {
+        // The push-wall sandbox: the layer from the moving wall's start at
+        // -length h0 to the fixed end wall at 0. Its wedge rises against the
+        // moving wall and falls toward the fixed end: the "retro" flank of
+        // the measures (beta, the retro toe) is the push-wall wedge's surface
+        // slope and front; x_S is the wall's start, so the peak's offset is
+        // measured from there (docs/experiments.md "The push-wall sandbox").
+        pp.x_min = -c.sandbox.length * h0;
+        pp.x_max = 0.0;
+        pp.h0 = h0;
+        pp.x_s = pp.x_min;
+        pp.toe_threshold = w.toe_threshold * h0;
+        pp.retro_side = true;
+        pp.backstop_margin = 0.0;
+        return pp;
+    }
     pp.x_min = -(w.s_max + w.pro_margin) * h0;  // the trailing end at the start
     pp.x_max = backstop ? 0.0 : w.retro_length * h0;
     pp.h0 = h0;
@@ -169,6 +186,14 @@ ProfileParams wedge_profile_params(const Config& c) {
     pp.retro_side = !backstop;
     pp.backstop_margin = backstop ? 0.5 * h0 : 0.0;  // the backstop's own drag zone
     return pp;
+}
+
+double undeformed_surface(const ParticleStore& p, const ProfileParams& pp, const Config& c) {
+    if (!experiment_of(c).push_wall) return undeformed_surface(p, pp);
+    // The sandbox: a wedge cut to a slope stands on the bare base (0); a flat
+    // layer's far half, which the push reaches last.
+    if (c.sandbox.surface_slope_deg > 0.0) return 0.0;
+    return mean_surface(p, 0.5 * (pp.x_min + pp.x_max), pp.x_max, pp.column);
 }
 
 double undeformed_surface(const ParticleStore& p, const ProfileParams& pp) {
@@ -185,14 +210,18 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer, const RunNumb
     const WedgeConfig& w = c.wedge;
     const double h0 = c.packing.h0;
     const bool backstop = experiment_of(c).backstop;
+    const bool push_wall = experiment_of(c).push_wall;  // the sandbox
     const TimestepInfo& t = n.timestep;
 
     WedgeSetup ws;
-    ws.pro_length = (w.s_max + w.pro_margin) * h0;
+    ws.pro_length = push_wall ? c.sandbox.length * h0 : (w.s_max + w.pro_margin) * h0;
     ws.retro_length = backstop ? 0.0 : w.retro_length * h0;
     Simulation& sim = ws.sim;
     sim.particles = layer;
     ParticleStore& p = sim.particles;
+    // The sandbox's wedge: the layer's top cut to a slope from the wall (at x = 0 before the shift).
+    if (push_wall && c.sandbox.surface_slope_deg > 0.0 && p.size() > 0)
+        cut_layer_to_slope(p, h0, 0.0, c.sandbox.surface_slope_deg);
     for (std::size_t s = 0; s < p.size(); ++s) {
         p.x[s].x -= ws.pro_length;
         p.side[s] = p.x[s].x > 0.0 ? 1 : 0;
@@ -244,12 +273,21 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer, const RunNumb
     sp.tolerance = w.sleep_tolerance * c.packing.r_min;
     sp.buffer_left = w.sleep_buffer_pro * h0;  // the incoming plate
     sp.buffer_right = w.sleep_buffer * h0;     // the retroside
+    if (push_wall) {
+        // The sandbox: every disc lies right of the wall's start and its
+        // rigid motion is rest; the far layer sleeps, the discs the wall
+        // moves are awake, with sleep_buffer h0 beyond the outermost of them.
+        sp.x_split = x_pro;
+        sp.left = false;
+        sp.right = true;
+    }
 
     std::unique_ptr<BasalBoundary> base;
+    const double v_base = push_wall ? 0.0 : w.v;  // the sandbox's base is at rest
     if (w.base_law == BaseLaw::traction)
-        base = std::make_unique<ConveyorTraction>(kWallProBase, w.v, w.mu_bp, w.traction_gain, w.drag_gain);
+        base = std::make_unique<ConveyorTraction>(kWallProBase, v_base, w.mu_bp, w.traction_gain, w.drag_gain);
     else
-        base = std::make_unique<CoulombBase>(kWallProBase, w.v, w.mu_bp);
+        base = std::make_unique<CoulombBase>(kWallProBase, v_base, w.mu_bp);
     ws.base = base.get();
     sim.boundaries.push_back(std::move(base));
     if (experiment_of(c).retroside == Retroside::coulomb && w.base_law == BaseLaw::coulomb) {
@@ -265,7 +303,7 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer, const RunNumb
 
     ws.profile = wedge_profile_params(c);
     // Undeformed surface: the incoming layer away from both ends.
-    ws.profile.y_mean = undeformed_surface(p, ws.profile);
+    ws.profile.y_mean = undeformed_surface(p, ws.profile, c);
     return ws;
 }
 

@@ -16,6 +16,13 @@
 //
 // The layer spans x ∈ [−(s_max + pro_margin) h0, retro_length h0], so the
 // incoming plate never runs out before S = s_max.
+//
+// The push-wall sandbox (run.experiment = "sandbox", issue #67) uses the
+// critical wedge's walls on a base at rest: the layer spans
+// x ∈ [−sandbox.length h0, 0], walls[0] is the base (CoulombBase or the
+// traction law at v' = 0, friction μ_bp), walls[1] the fixed end wall at
+// x = 0, walls[2] the wall that pushes the layer at +v. A wedge cut to
+// sandbox.surface_slope_deg falls from h0 at the moving wall.
 #pragma once
 
 #include "orodem/analysis/wedge_profile.hpp"
@@ -60,6 +67,9 @@ ProfileParams wedge_profile_params(const Config& c);
 /// y_mean: the mean surface-centre height of the incoming layer at the start,
 /// from h0 inside its trailing end to h0 before the S point [m].
 double undeformed_surface(const ParticleStore& p, const ProfileParams& pp);
+/// The same for the experiment of c: the push-wall sandbox measures a flat
+/// layer's far half, and takes the base (0) under a wedge cut to a slope.
+double undeformed_surface(const ParticleStore& p, const ProfileParams& pp, const Config& c);
 
 /// Eq. 6 bound on the belt speed for the lightest disc: m_min g / (k_n dt) [m/s]
 /// (dt [s] the run's timestep; without it, timestep_for(c)).

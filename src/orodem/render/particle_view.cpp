@@ -131,9 +131,11 @@ void draw_legend(Canvas& c, const Legend& g, double x_right, const Layout& L) {
             c.line(x, y, x + 2.0 * L.F, y, k == 0 ? kProFault : kRetroFault, lw, k != 0);
             x -= 1.2 * L.F;
         }
-        const std::string what = fmt::format("active faults dipping {:g}-{:g}°, numbered by their id:",
-                                             kFaultDipMinDeg, kFaultDipMaxDeg);
-        c.text(what, x - text_width(what, size), y, size, HAlign::left, VAlign::middle);
+        if (!g.line_keys.empty()) {  // the strain maps' faults (not the displacement or damage bars)
+            const std::string what = fmt::format("active faults dipping {:g}-{:g}°, numbered by their id:",
+                                                 kFaultDipMinDeg, kFaultDipMaxDeg);
+            c.text(what, x - text_width(what, size), y, size, HAlign::left, VAlign::middle);
+        }
         return;
     }
     // Swatches, laid out from the right: "label [ ][ ]" pairs.
@@ -288,7 +290,7 @@ Legend picture_legend(const ViewOptions& o) {
         return g;
     }
     if (o.color_by == ColorBy::damage) {
-        g.title = "damage: sliding distance of a particle's contacts [mean disc diameters], log scale";
+        g.title = "damage: contacts' sliding [mean diameters], log scale";
         g.lo = kDamageLo;
         g.hi = kDamageHi;
         g.log_scale = true;

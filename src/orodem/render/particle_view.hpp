@@ -67,7 +67,7 @@ inline constexpr double kStrainLo = 1e-3, kStrainHi = 1.0;
 /// The finite shear strain bar (log scale): γ since S = 0 [-].
 inline constexpr double kStrainTotalLo = 1e-2, kStrainTotalHi = 10.0;
 /// The damage bar of a layered run (log scale): sliding distance [mean disc diameters].
-inline constexpr double kDamageLo = 1e-2, kDamageHi = 10.0;
+inline constexpr double kDamageLo = 1e-2, kDamageHi = 100.0;
 
 /// A fault drawn on a strain map: a segment from root to tip [m] (the run's
 /// coordinates: x from the S point, y from the base), and its vergence (+1

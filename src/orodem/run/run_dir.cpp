@@ -41,8 +41,8 @@ std::vector<RunDirFile> run_dir_files() {
         {"`run.pvd`, `snapshots/S*.vtu`",
          "ParaView time series (time value = S): per disc `id`, `radius`, `velocity`, `initial_depth`, `side` (0 pro, "
          "1 retro), `cluster_id`, `rel_disp` (normalised per snapshot), `omega`, `fixed`, `asleep`, `shear_strain`, "
-         "`vol_strain`, `rotation`, `d2min`, `shear_strain_total` (finite, from S = 0), `rel_disp_abs` (m); field data "
-         "`S`, `step`, `time`. Units and normalisation of each: [python.md](python.md)"},
+         "`vol_strain`, `rotation`, `d2min`, `shear_strain_total` (finite, from S = 0), `rel_disp_abs` (m), in layered "
+         "runs `material`, `layer`, `damage` (mean disc diameters); field data `S`, `step`, `time`. Units and normalisation of each: [python.md](python.md)"},
         {"`figures/`",
          "`horizons_S*.png` (initial-depth bands, retroside darker), `displacement_S*.png` (relative displacement of "
          "neighbours since the previous output per unit convergence, on one fixed colour bar), `strain_S*.png` (each "

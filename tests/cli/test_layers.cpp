@@ -142,6 +142,28 @@ TEST_F(Layers, TheBiaxialTestOfANamedMaterialWithoutWeakeningIsThatOfMaterial) {
     EXPECT_FALSE(fs::exists(work_ / "D"));
 }
 
+TEST_F(Layers, TheBasalFrictionOfALayeredBlock) {
+    // [[layers]] in the basal-friction block, in fractions of its height:
+    // one material equal to [material] gives the one-law bytes, and a weak
+    // basal layer (μ_i 0.1 under 0.3) runs and changes the result.
+    const std::string common = "[run]\nexperiment = \"basal-friction\"\n[calibrate]\nkinds = [\"clusters\"]\n"
+                               "mu_bp_values = [0.5]\nblock_length = 12.0\nblock_height = 6.0\nduration = 20.0\n";
+    write(work_ / "plain.toml", common);
+    write(work_ / "one.toml", common + "[materials.same]\n[[layers]]\nmaterial = \"same\"\nthickness = 1.0\n");
+    write(work_ / "weak.toml", common + "[materials.weak]\nmu = 0.1\n[materials.cover]\n"
+                                        "[[layers]]\nmaterial = \"weak\"\nthickness = 0.2\n"
+                                        "[[layers]]\nmaterial = \"cover\"\nthickness = 0.8\n");
+    ASSERT_EQ(orodem("calibrate plain.toml --out A --threads 1").status, 0);
+    const Result one = orodem("calibrate one.toml --out B --threads 2");
+    ASSERT_EQ(one.status, 0) << one.err;
+    const Result weak = orodem("calibrate weak.toml --out C --threads 2");
+    ASSERT_EQ(weak.status, 0) << weak.err;
+    const std::string f = "basal-friction-clusters-mu_bp0.5.csv";
+    EXPECT_GT(slurp(work_ / "A" / f).size(), 100u);
+    EXPECT_EQ(slurp(work_ / "A" / f), slurp(work_ / "B" / f));
+    EXPECT_NE(slurp(work_ / "A" / f), slurp(work_ / "C" / f));
+}
+
 TEST_F(Layers, ConfigErrorsAreOneLineExit2AndWriteNothing) {
     struct Case {
         std::string extra, says;

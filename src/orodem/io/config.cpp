@@ -280,10 +280,13 @@ void read_layers(Config& c, const toml::table& root, const std::string& file) {
     };
     // The biaxial test of a named material (calibrate.material) reads its [materials.NAME] alone.
     const bool biaxial = c.run.experiment == "biaxial" && !c.calibrate.material.empty();
-    if (!is_wedge(c) && !(biaxial && mats && !layers && !retro && !pairs))
+    // The basal-friction block of a layered config: [[layers]] in fractions of calibrate.block_height.
+    const bool basal = c.run.experiment == "basal-friction" && mats && layers && !retro;
+    if (!is_wedge(c) && !(biaxial && mats && !layers && !retro && !pairs) && !basal)
         fail(mats ? mats : layers ? layers : retro ? retro : pairs,
              fmt::format("[materials] and [[layers]] are read by the wedge experiments only (and [materials] by the "
-                         "biaxial test of calibrate.material), not run.experiment = \"{}\"",
+                         "biaxial test of calibrate.material, [materials] and [[layers]] by basal-friction), not "
+                         "run.experiment = \"{}\"",
                          c.run.experiment));
     if (!mats || !mats->is_table() || mats->as_table()->empty())
         fail(mats ? mats : layers, "a layered wedge needs its materials: one table [materials.NAME] per material");

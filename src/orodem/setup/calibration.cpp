@@ -345,6 +345,10 @@ BasalResult run_basal_block(const Config& c, ParticleStore block, double mu, dou
     res.mu_bp = mu_bp;
     Simulation sim;
     sim.particles = std::move(block);
+    if (c.layered()) {  // a layered block: [[layers]] in fractions of the block's height (setup/layers.hpp)
+        assign_layers(c, sim.particles, k.block_height);
+        sim.materials = material_table(c);
+    }
     const ParticleStore& p = sim.particles;
     res.discs = p.size();
     sim.params.law = material_law(c, mu);

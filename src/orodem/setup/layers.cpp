@@ -64,9 +64,9 @@ MaterialTable with_damping_ratio(MaterialTable t, double zeta) {
     return t;
 }
 
-void assign_layers(const Config& c, ParticleStore& p) {
+void assign_layers(const Config& c, ParticleStore& p, double unit) {
     const std::size_t n = p.size();
-    const double h0 = c.packing.h0;
+    const double h0 = unit > 0.0 ? unit : c.packing.h0;  // [m]
     // Each particle's mean position: a cluster's discs together.
     std::int32_t max_cluster = -1;
     for (std::size_t s = 0; s < n; ++s) max_cluster = std::max(max_cluster, p.cluster[s]);

@@ -22,7 +22,9 @@ MaterialTable material_table(const Config& c);
 /// from each material's density (inverse masses of free discs as
 /// set_free_inertia without a floor) and zero damage. Layer ids: from 0 at
 /// the base on each side (its stack's index; `side` tells the two apart).
-void assign_layers(const Config& c, ParticleStore& p);
+/// `unit`: the thickness unit of the layers [m]; 0 = packing.h0 (the
+/// basal-friction block's layers are fractions of calibrate.block_height).
+void assign_layers(const Config& c, ParticleStore& p, double unit = 0.0);
 
 /// Every particle of p in material `name` of c.materials (layer 0): the
 /// biaxial test of calibrate.material. Masses as assign_layers.

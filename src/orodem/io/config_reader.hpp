@@ -20,6 +20,7 @@
 
 #include "orodem/core/error.hpp"
 #include "orodem/core/named.hpp"
+#include "orodem/io/config.hpp"
 
 namespace orodem::config_reader {
 
@@ -296,5 +297,10 @@ private:
     toml::source_region src_;
     std::set<std::string> used_;
 };
+
+/// [materials.NAME], [[layers]], [[retro_layers]], [[friction_pairs]] of a
+/// layered wedge and calibrate.material (io/config_layers.cpp); after
+/// [material] and [calibrate]. Absent: nothing is read or resolved.
+void read_layers(Config& c, const toml::table& root, const std::string& file);
 
 }  // namespace orodem::config_reader

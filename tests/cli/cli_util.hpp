@@ -164,6 +164,19 @@ protected:
     fs::path root_, work_, capture_;
 };
 
+/// The rows of a CSV text (no quoting), each split at its commas.
+inline std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+    std::vector<std::vector<std::string>> rows;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        std::vector<std::string> f;
+        std::istringstream l(line);
+        for (std::string x; std::getline(l, x, ',');) f.push_back(x);
+        rows.push_back(f);
+    }
+    return rows;
+}
+
 /// A tiny exp1 (h0 = 6 m, S = 0.5, three outputs) whose packing cache lies in dir.
 inline void write_tiny_exp1(const fs::path& dir, const std::string& name = "tiny.toml") {
     write(dir / name, "[run]\nexperiment = \"exp1\"\n"

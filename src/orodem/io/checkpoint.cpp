@@ -232,6 +232,15 @@ std::string encode_checkpoint(const Simulation& sim, const RunLoopState& run, st
         w.put(e.removed);
         w.put(e.eroded_bytes);
     }
+    if (run.flexure.on) {
+        // Only in runs with [flexure]: every other checkpoint keeps its bytes.
+        const FlexureState& e = run.flexure;
+        put_tag(w, "flexure");
+        w.put(e.solved_step);
+        w.put_vector(e.f);
+        w.put_vector(e.w);
+        w.put(e.profile_bytes);
+    }
     put_tag(w, "end");
 
     const std::string& payload = w.bytes();
@@ -409,6 +418,16 @@ void decode_checkpoint(std::string_view bytes, AcceptedHashes expected_config_ha
             r.get(e.requested_area);
             r.get(e.removed);
             r.get(e.eroded_bytes);
+            tag = r.get_string();
+        }
+        if (tag == "flexure") {
+            FlexureState& e = run.flexure;
+            e.on = true;
+            r.get(e.solved_step);
+            r.get_vector(e.f);
+            r.get_vector(e.w);
+            if (e.f.size() != e.w.size()) bad("flexure load and deflection differ in length");
+            r.get(e.profile_bytes);
             tag = r.get_string();
         }
         if (tag != "end") throw CheckpointError(fmt::format("section 'end' expected, found '{}'", tag));

@@ -57,6 +57,17 @@ struct SurfaceState {
     std::uint64_t eroded_bytes = 0;      // eroded.csv length [bytes]
 };
 
+/// The plate under the wedge (run/wedge_flexure.hpp); saved in the
+/// checkpoint's "flexure" section, present only when `on` ([flexure] in the
+/// config), so every other run's checkpoint keeps its bytes.
+struct FlexureState {
+    bool on = false;                     // [flexure] present (not saved: the section is)
+    std::uint64_t solved_step = 0;       // step of the last solve [-]
+    std::vector<double> f;               // node forces of the last solve [N/m]
+    std::vector<double> w;               // deflection of the last solve, positive down [m]
+    std::uint64_t profile_bytes = 0;     // flexure.csv length [bytes]
+};
+
 /// The run loop's own state (run/wedge_run.hpp) at the checkpoint.
 struct RunLoopState {
     std::uint64_t outputs = 0;                          // output rows written so far
@@ -74,6 +85,7 @@ struct RunLoopState {
     std::int32_t stage = 0;                             // the stage reached (stage_reached)
     std::int32_t stage_last_output = 0;                 // classify_stage of the last output
     SurfaceState surface;                               // erosion ([surface]); off: not saved
+    FlexureState flexure;                               // the plate ([flexure]); off: not saved
 };
 
 /// FNV-1a 64 of the resolved config without the keys at their defaults

@@ -322,10 +322,10 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
     for (auto&& [k, v] : root) {
         static const std::set<std::string> known = {"run",       "wedge",     "material", "packing",      "numerics",
                                                     "calibrate", "materials", "layers",   "retro_layers", "friction_pairs",
-                                                    "surface",   "sandbox"};
+                                                    "surface",   "sandbox",   "flexure"};
         if (!known.count(std::string(k.str())))
             throw ConfigError(fmt::format("{}: unknown key '{}' = {}{}; allowed top-level tables: run, wedge, material, packing, "
-                                          "numerics, calibrate, materials, layers, retro_layers, friction_pairs, surface, sandbox",
+                                          "numerics, calibrate, materials, layers, retro_layers, friction_pairs, surface, sandbox, flexure",
                                           where(file, k.source()), k.str(), show(v), did_you_mean(k.str(), known)));
     }
 
@@ -500,6 +500,7 @@ Config read(const toml::table& root, const std::string& file, bool resolved_file
         out.get("wedge")->as_table()->insert_or_assign("column_width", c.wedge.column_width);
     }
     read_surface(c, root, file);
+    read_flexure(c, root, file);
     return c;
 }
 

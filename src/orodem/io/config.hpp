@@ -149,6 +149,27 @@ struct SurfaceConfig {
     double column_width = 0.0;        // surface column width [h0]; 0 = wedge.column_width
 };
 
+/// [flexure]: the 1D elastic plate under the wedge (docs/physics.md "Flexure
+/// under the wedge"; physics/flexure.hpp); exp1, exp2 and exp3 only. Absent:
+/// nothing is resolved and the run is as before. The plate is quasi-static:
+/// solved every interval_steps steps under the base load measured then.
+enum class PlateKind { continuous, broken };
+inline constexpr Named<PlateKind> kPlateKinds[] = {{PlateKind::continuous, "continuous"}, {PlateKind::broken, "broken"}};
+constexpr const char* name_of(PlateKind v) { return name_in(kPlateKinds, v); }
+struct FlexureConfig {
+    bool present = false;             // (not a key) the config has a [flexure] table
+    PlateKind plate = PlateKind::continuous;  // continuous | broken (two plates, free ends at the S point)
+    double Te = 0.0;                  // elastic thickness T_e [m]; give Te or D
+    double D = 0.0;                   // flexural rigidity D [N m] (per unit width); give D or Te
+    double E = 70.0e9;                // Young's modulus E [Pa] (with Te)
+    double nu = 0.25;                 // Poisson's ratio ν [-] (with Te)
+    double rho_mantle = 3300.0;       // density of the mantle under the plate [kg/m³]
+    double rho_infill = 0.0;          // density of what fills the deflection outside the model [kg/m³]; 0: air
+    std::int64_t interval_steps = 100;  // solve the plate every this many steps (and at each output) [-]
+    double dx = 0.0;                  // plate node spacing [h0]; 0 = α/40 (at most α/40)
+    double extension = 9.42477796076938;  // plate beyond each end of the model [α]; default 3π
+};
+
 struct PackingConfig {
     PackingKind kind = PackingKind::clusters;  // hexagonal | discs | clusters ([33]-[37])
     double r_min = 0.5;               // smallest disc radius [m]
@@ -225,6 +246,7 @@ struct Config {
     std::vector<LayerConfig> retro_layers;     // [[retro_layers]]: the retroside; default the same as layers
     std::vector<FrictionPair> friction_pairs;  // [[friction_pairs]]
     SurfaceConfig surface;                     // [surface]: erosion while the belt runs (absent: off)
+    FlexureConfig flexure;                     // [flexure]: the elastic plate under the wedge (absent: off)
     bool layered() const { return !layers.empty(); }
     toml::table resolved;             // every key with its final value
     // A run directory's config.toml written before base_law existed (orodem
@@ -233,6 +255,11 @@ struct Config {
     // orodem hashed it (io/checkpoint.cpp config_hash), so it still resumes.
     bool legacy_base_law = false;
 };
+
+struct PlateParams;
+/// The plate of [flexure] (io/config_flexure.cpp): g = numerics.gravity, a
+/// break at the S point (x = 0) on a broken plate.
+PlateParams flexure_plate_params(const Config& c);
 
 /// The experiments (run.experiment), in one table: what each one is and
 /// which boundaries it has (SPEC §2; setup/wedge.cpp builds them).

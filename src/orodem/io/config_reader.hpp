@@ -302,5 +302,8 @@ private:
 /// layered wedge and calibrate.material (io/config_layers.cpp); after
 /// [material] and [calibrate]. Absent: nothing is read or resolved.
 void read_layers(Config& c, const toml::table& root, const std::string& file);
+/// [flexure] of exp1, exp2, exp3 (io/config_flexure.cpp); after [wedge],
+/// [packing] and [numerics]. Absent: nothing is read or resolved.
+void read_flexure(Config& c, const toml::table& root, const std::string& file);
 
 }  // namespace orodem::config_reader

@@ -53,6 +53,7 @@
 // slope_at is its derivative.
 #include "orodem/physics/flexure.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -256,6 +257,25 @@ void FlexurePlate::add_line_load(double x, double V, double* f) const {
     } else {
         f[s.i] += (1.0 - s.t) * V;
         f[s.i + 1] += s.t * V;
+    }
+}
+
+void FlexurePlate::add_pressure(double x0, double x1, double q, double* f) const {
+    const std::size_t n = size();
+    const double h = dx_;
+    for (std::size_t k = 0; k < n; ++k) {
+        const bool first = k == 0 || (broken_ && k == break_node_ + 1);
+        const bool last = k + 1 == n || (broken_ && k == break_node_);
+        double a = 0.0;  // ∫ of the hat over [x0, x1] [m]
+        if (!first) {    // left half: (x − x_l)/h on [x_l, x_k]
+            const double xl = x_[k] - h, lo = std::max(x0, xl), hi = std::min(x1, x_[k]);
+            if (hi > lo) a += ((hi - xl) * (hi - xl) - (lo - xl) * (lo - xl)) / (2.0 * h);
+        }
+        if (!last) {     // right half: (x_r − x)/h on [x_k, x_r]
+            const double xr = x_[k] + h, lo = std::max(x0, x_[k]), hi = std::min(x1, xr);
+            if (hi > lo) a += ((xr - lo) * (xr - lo) - (xr - hi) * (xr - hi)) / (2.0 * h);
+        }
+        f[k] += q * a;
     }
 }
 

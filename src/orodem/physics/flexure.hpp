@@ -106,6 +106,11 @@ public:
     /// the plate that holds x: with a break, x < x_break is the left plate and
     /// x ≥ x_break the right one. Throws std::out_of_range outside the grid.
     void add_line_load(double x, double V, double* f) const;
+    /// Adds a uniform pressure q [Pa] over [x0, x1] to the node forces f
+    /// [N/m]: each node the integral of q times its hat function, the
+    /// function add_line_load splits with (the parts outside the grid fall
+    /// off; a range over the break loads both plates).
+    void add_pressure(double x0, double x1, double q, double* f) const;
 
     /// w at any x of the grid [m], from the node values w by cubic Hermite
     /// interpolation with the nodes' finite-difference slopes (second order;

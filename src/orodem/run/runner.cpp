@@ -288,6 +288,7 @@ int resume_locked(const Config& c, const RunNumbers& n, const std::string& dir, 
     if (st.faults_bytes > 0 || std::filesystem::exists(dir + "/faults.csv")) truncate_file(dir + "/faults.csv", st.faults_bytes);
     truncate_file(dir + "/log.txt", st.log_bytes);
     if (st.surface.on) truncate_file(dir + "/eroded.csv", st.surface.eroded_bytes);
+    if (st.flexure.on) truncate_file(dir + "/flexure.csv", st.flexure.profile_bytes);
     for (const auto& line : history) log.line(line);
     for (const auto& note : notes) log.line("warning: " + note);
     EventRecord e;

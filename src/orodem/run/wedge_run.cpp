@@ -55,8 +55,10 @@ int WedgeRun::run() {
         const std::uint64_t next_output = next_output_step();
         std::uint64_t to = std::min(next_output, (sim_.step_count / kStepsPerChunk + 1) * kStepsPerChunk);
         if (surface_.active()) to = std::min(to, surface_.next_step(sim_.step_count));
+        if (flexure_.on()) to = std::min(to, flexure_.next_step(sim_.step_count));
         advance_to(to);
         if (surface_.due(sim_.step_count)) surface_.apply(sim_, st_.surface, S(), st_.x_then, eroded_file_);
+        if (flexure_.due(sim_.step_count) && sim_.step_count != next_output) flexure_.solve(sim_, st_.flexure);
         if (sim_.step_count == next_output) {
             output();
         } else if (sim_.step_count % kCheckEvery == 0) {
@@ -94,7 +96,7 @@ WedgeRun::WedgeRun(const Config& c, WedgeSetup& w, const std::string& dir, RunLo
     : c_(c), w_(w), sim_(w.sim), dir_(dir), log_(log), obs_(observer), resumed_(resumed != nullptr),
       h0_(c.packing.h0), cfg_hash_(config_hash(c)),
       adapt_threads_(omp_get_max_threads() > 1 && ThreadGovernor::enabled_by_environment()),
-      threads_(omp_get_max_threads()), surface_(c, w) {
+      threads_(omp_get_max_threads()), surface_(c, w), flexure_(c, w) {
     if (resumed) {
         st_ = *resumed;
         w_.profile.y_mean = st_.surface_y_mean;
@@ -104,27 +106,38 @@ WedgeRun::WedgeRun(const Config& c, WedgeSetup& w, const std::string& dir, RunLo
     const std::string series_path = dir_ + "/series.csv";
     // A run that an older orodem started keeps the columns it started with.
     series_columns_ = std::numeric_limits<std::size_t>::max();
-    if (resumed_ && !surface_.on()) {
+    if (resumed_ && !surface_.on() && !flexure_.on()) {
         const std::string text = read_file(series_path);
         series_columns_ = csv_leading_columns(text.substr(0, text.find('\n')), series_header(), series_path);
     }
-    // With [surface] the ledger's columns follow (run/surface_erosion.hpp).
+    // With [surface] the ledger's columns follow (run/surface_erosion.hpp),
+    // with [flexure] the plate's (run/wedge_flexure.hpp).
     if (surface_.on()) {
         if (resumed_ && !st_.surface.on)
             throw ConfigError("the checkpoint has no erosion state ([surface]); resume with the run's own config.toml");
         if (!resumed_) surface_.start(sim_.particles, st_.surface);
-        const std::string full = series_header() + "," + surface_series_header();
-        if (resumed_) {
-            const std::string text = read_file(series_path);
-            if (text.substr(0, text.find('\n')) != full)
-                throw ConfigError(fmt::format("'{}' does not have the columns of a run with [surface]", series_path));
-        }
-        series_columns_ = std::numeric_limits<std::size_t>::max();
         eroded_file_ = LineFile(dir_ + "/eroded.csv");
         if (!resumed_) eroded_file_.line(eroded_header());
     }
+    if (flexure_.on()) {
+        if (resumed_ && !st_.flexure.on)
+            throw ConfigError("the checkpoint has no plate state ([flexure]); resume with the run's own config.toml");
+        if (!resumed_) flexure_.start(st_.flexure);
+        flexure_file_ = LineFile(dir_ + "/flexure.csv");
+        if (!resumed_) flexure_file_.line(flexure_profile_header());
+    }
+    if (surface_.on() || flexure_.on()) {
+        const std::string full = series_header() + extra_series_header();
+        if (resumed_) {
+            const std::string text = read_file(series_path);
+            if (text.substr(0, text.find('\n')) != full)
+                throw ConfigError(fmt::format("'{}' does not have the columns of a run with{}{}", series_path,
+                                              surface_.on() ? " [surface]" : "", flexure_.on() ? " [flexure]" : ""));
+        }
+        series_columns_ = std::numeric_limits<std::size_t>::max();
+    }
     series_ = LineFile(series_path);
-    if (!resumed_) series_.line(surface_.on() ? series_header() + "," + surface_series_header() : series_header());
+    if (!resumed_) series_.line(series_header() + extra_series_header());
     // faults.csv: a run resumed from a checkpoint older than the fault table
     // (faults_bytes = 0) starts it at the resume.
     const std::string faults_path = dir_ + "/faults.csv";
@@ -297,11 +310,16 @@ WedgeMeasures WedgeRun::write_row() {
     r.front_thrust_x = fault_counts_.front_x;
     r.stage = st_.stage;
     r.decoupling_x = decoupling_x_;
+    std::string line = series_line(r, series_columns_);
     if (surface_.on())
-        series_.line(series_line(r, series_columns_) + "," +
-                     surface_series_line(surface_.ledger(sim_.particles, st_.surface, r.S, r.m.wedge_area)));
-    else
-        series_.line(series_line(r, series_columns_));
+        line += "," + surface_series_line(surface_.ledger(sim_.particles, st_.surface, r.S, r.m.wedge_area));
+    if (flexure_.on()) {
+        // The plate under this output's load, written whole to flexure.csv.
+        flexure_.solve(sim_, st_.flexure);
+        flexure_.write_profile(st_.flexure, r.S, flexure_file_);
+        line += "," + flexure_series_line(flexure_.measures(st_.flexure));
+    }
+    series_.line(line);
     const double secs = elapsed();
     const double rate = static_cast<double>(sim_.step_count - rate_from_step_) / std::max(secs - rate_from_secs_, 1e-9);
     rate_from_step_ = sim_.step_count;
@@ -452,6 +470,7 @@ std::string WedgeRun::state_bytes() {
     st_.faults_bytes = file_bytes(dir_ + "/faults.csv");
     st_.log_bytes = file_bytes(dir_ + "/log.txt");
     if (surface_.on()) st_.surface.eroded_bytes = file_bytes(dir_ + "/eroded.csv");
+    if (flexure_.on()) st_.flexure.profile_bytes = file_bytes(dir_ + "/flexure.csv");
     return encode_checkpoint(sim_, st_, cfg_hash_);
 }
 
@@ -461,6 +480,7 @@ std::string WedgeRun::save_checkpoint(const std::string& bytes) {
     series_.sync();
     faults_file_.sync();
     if (eroded_file_.is_open()) eroded_file_.sync();
+    if (flexure_file_.is_open()) flexure_file_.sync();
     log_.sync();
     const std::string path = write_checkpoint(dir_ + "/checkpoint", sim_.step_count, bytes);
     last_checkpoint_time_ = std::chrono::steady_clock::now();
@@ -508,6 +528,13 @@ void WedgeRun::event(RunEvent kind, std::string text, double wall_s, double step
     e.steps_per_s = steps_per_s;
     e.text = std::move(text);
     log_.event(e);
+}
+
+std::string WedgeRun::extra_series_header() const {
+    std::string h;
+    if (surface_.on()) h += "," + surface_series_header();
+    if (flexure_.on()) h += "," + flexure_series_header();
+    return h;
 }
 
 double WedgeRun::S() const { return c_.wedge.v * sim_.time / h0_; }

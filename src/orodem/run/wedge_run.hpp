@@ -29,6 +29,7 @@
 #include "orodem/run/observer.hpp"
 #include "orodem/run/run_log.hpp"
 #include "orodem/run/surface_erosion.hpp"
+#include "orodem/run/wedge_flexure.hpp"
 #include "orodem/setup/wedge.hpp"
 
 namespace orodem {
@@ -116,6 +117,9 @@ private:
     ViewOptions view_;
     SurfaceErosion surface_;            // [surface]: erosion every surface.interval_steps (off: no-op)
     LineFile eroded_file_;              // eroded.csv, with [surface] only
+    WedgeFlexure flexure_;              // [flexure]: the plate solved every flexure.interval_steps (off: no-op)
+    LineFile flexure_file_;             // flexure.csv, with [flexure] only
+    std::string extra_series_header() const;  // the ledger's and the plate's columns, after series_header()
     bool overlap_warned_ = false;       // stderr once; log.txt at every output
     bool wall_warned_ = false;
 };

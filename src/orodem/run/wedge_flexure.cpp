@@ -1,0 +1,134 @@
+#include "orodem/run/wedge_flexure.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "orodem/analysis/base_load.hpp"
+
+namespace orodem {
+
+std::string flexure_series_header() {
+    return "moat_depth_over_h0,moat_x_over_h0,forebulge_pro_x_over_h0,forebulge_pro_height_over_h0,"
+           "forebulge_retro_x_over_h0,forebulge_retro_height_over_h0,basin_pro_width_over_h0,"
+           "basin_retro_width_over_h0,base_load_ratio";
+}
+
+std::string flexure_series_line(const FlexureMeasures& m) {
+    return fmt::format("{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}", m.moat_depth, m.moat_x,
+                       m.forebulge_pro_x, m.forebulge_pro_height, m.forebulge_retro_x, m.forebulge_retro_height,
+                       m.basin_pro_width, m.basin_retro_width, m.load_ratio);
+}
+
+std::string flexure_profile_header() { return "S,node,x,load,w"; }
+
+WedgeFlexure::WedgeFlexure(const Config& c, const WedgeSetup& w)
+    : on_(c.flexure.present), interval_(static_cast<std::uint64_t>(std::max<std::int64_t>(1, c.flexure.interval_steps))),
+      h0_(c.packing.h0) {
+    if (!on_) return;
+    const PlateParams pp = flexure_plate_params(c);
+    const double alpha = pp.flexural_parameter();
+    FlexureGridSpec g;
+    g.x_min = -w.pro_length;
+    g.x_max = w.retro_length;
+    g.dx = c.flexure.dx * h0_;  // 0: α/40
+    g.extension = c.flexure.extension * alpha;
+    plate_ = std::make_unique<FlexurePlate>(pp, g);
+    x_retro_end_ = w.retro_length;
+    base_walls_ = {kWallProBase, kWallRetro};
+    // The undeformed layer's weight per unit length, in id order (the same
+    // sum in a resumed run; removed discs keep their mass column).
+    const ParticleStore& p = w.sim.particles;
+    double m = 0.0;
+    for (std::size_t id = 0; id < p.size(); ++id) m += p.mass[p.slot_of_id[id]];
+    q_layer_ = c.numerics.gravity * m / (w.pro_length + w.retro_length);
+    w_layer_ = q_layer_ / plate_->foundation_stiffness();
+}
+
+void WedgeFlexure::start(FlexureState& st) const {
+    st = FlexureState{};
+    st.on = on_;
+    if (!on_) return;
+    st.f.assign(plate_->size(), 0.0);
+    st.w.assign(plate_->size(), 0.0);
+}
+
+void WedgeFlexure::solve(const Simulation& sim, FlexureState& st) {
+    const FlexurePlate& pl = *plate_;
+    const std::size_t n = pl.size();
+    st.f.assign(n, 0.0);
+    st.w.assign(n, 0.0);
+    const double loads = base_load_by_id(sim, base_walls_, load_);
+    const double weight = present_weight(sim);
+    load_ratio_ = weight > 0.0 ? loads / weight : std::nan("");
+    const ParticleStore& p = sim.particles;
+    const double x_lo = pl.x(0), x_hi = pl.x(n - 1);
+    for (std::size_t id = 0; id < p.size(); ++id) {
+        if (load_[id] == 0.0) continue;
+        const double x = std::clamp(p.x[p.slot_of_id[id]].x, x_lo, x_hi);
+        pl.add_line_load(x, load_[id], st.f.data());
+    }
+    // Beyond the model: the undeformed layer, left of the trailing wall and
+    // right of the retroside end wall.
+    const double x_pro_end = sim.walls[kWallProEnd].a.x;
+    pl.add_pressure(x_lo - 1.0, x_pro_end, q_layer_, st.f.data());
+    pl.add_pressure(x_retro_end_, x_hi + 1.0, q_layer_, st.f.data());
+    pl.solve_forces(st.f.data(), st.w.data());
+    st.solved_step = sim.step_count;
+}
+
+FlexureMeasures WedgeFlexure::measures(const FlexureState& st) const {
+    FlexureMeasures m;
+    const FlexurePlate& pl = *plate_;
+    const std::size_t n = st.w.size();
+    const double nan = std::nan("");
+    m.load_ratio = load_ratio_;
+    if (n == 0) {
+        m = FlexureMeasures{nan, nan, nan, nan, nan, nan, nan, nan, load_ratio_};
+        return m;
+    }
+    const auto d = [&](std::size_t k) { return st.w[k] - w_layer_; };  // [m], positive down
+    std::size_t kmax = 0;
+    for (std::size_t k = 1; k < n; ++k)
+        if (d(k) > d(kmax)) kmax = k;
+    m.moat_depth = d(kmax) / h0_;
+    m.moat_x = pl.x(kmax) / h0_;
+    std::size_t kp = 0, kr = kmax;
+    for (std::size_t k = 0; k < kmax; ++k)
+        if (d(k) < d(kp)) kp = k;
+    for (std::size_t k = kmax; k < n; ++k)
+        if (d(k) < d(kr)) kr = k;
+    m.forebulge_pro_x = kmax > 0 && d(kp) < 0.0 ? pl.x(kp) / h0_ : nan;
+    m.forebulge_pro_height = kmax > 0 && d(kp) < 0.0 ? -d(kp) / h0_ : nan;
+    m.forebulge_retro_x = d(kr) < 0.0 ? pl.x(kr) / h0_ : nan;
+    m.forebulge_retro_height = d(kr) < 0.0 ? -d(kr) / h0_ : nan;
+    // The basin: the nodes around the moat with w > w_layer, its ends where
+    // w − w_layer crosses 0 (linear between nodes; a plate's end otherwise).
+    if (!(d(kmax) > 0.0)) {
+        m.basin_pro_width = m.basin_retro_width = 0.0;
+        return m;
+    }
+    std::size_t a = kmax, b = kmax;
+    while (a > 0 && d(a - 1) > 0.0) --a;
+    while (b + 1 < n && d(b + 1) > 0.0) ++b;
+    const auto cross = [&](std::size_t in, std::size_t out) {  // zero of d between an inside and an outside node
+        const double xi = pl.x(in), xo = pl.x(out);
+        if (xi == xo) return xi;  // the break's two nodes
+        return xi + (xo - xi) * d(in) / (d(in) - d(out));
+    };
+    const double x_a = a > 0 ? cross(a, a - 1) : pl.x(0);
+    const double x_b = b + 1 < n ? cross(b, b + 1) : pl.x(n - 1);
+    m.basin_pro_width = std::max(0.0, std::min(0.0, x_b) - x_a) / h0_;
+    m.basin_retro_width = std::max(0.0, x_b - std::max(0.0, x_a)) / h0_;
+    return m;
+}
+
+void WedgeFlexure::write_profile(const FlexureState& st, double S, LineFile& out) const {
+    const FlexurePlate& pl = *plate_;
+    for (std::size_t k = 0; k < st.w.size(); ++k)
+        out.line(fmt::format("{:.6f},{},{:.9g},{:.17g},{:.17g}", S, k, pl.x(k), st.f[k], st.w[k]));
+}
+
+}  // namespace orodem

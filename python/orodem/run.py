@@ -13,6 +13,8 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
+_MAX_PVD_BYTES = 64 << 20  # as orodem's reader: far beyond the 1e5-output limit
+
 _VTK_TYPES = {
     "Int8": np.int8, "UInt8": np.uint8, "Int16": np.int16, "UInt16": np.uint16,
     "Int32": np.int32, "UInt32": np.uint32, "Int64": np.int64, "UInt64": np.uint64,
@@ -36,6 +38,8 @@ def read_series(path):
 def read_vtu(path):
     """The point data of an orodem VTU: 'x', 'y' (the points) and every point
     array by name; arrays of 3 components (velocity) have shape (n, 3)."""
+    if not os.path.isfile(path):  # a device (/dev/zero) or FIFO would never end or block
+        raise ValueError(f"{path}: not a regular file; not a VTU written by orodem")
     with open(path, "rb") as f:
         raw = f.read()
     marker = raw.find(b"<AppendedData")
@@ -107,9 +111,17 @@ class Run:
         pvd = os.path.join(self.path, "run.pvd")
         if not os.path.exists(pvd):
             return []
+        if os.path.getsize(pvd) > _MAX_PVD_BYTES:
+            raise ValueError(f"{pvd}: larger than {_MAX_PVD_BYTES >> 20} MiB, not an orodem run.pvd")
         root = ET.parse(pvd).getroot()
-        return [(float(d.get("timestep")), os.path.join(self.path, d.get("file")))
-                for d in root.iter("DataSet")]
+        out = []
+        for d in root.iter("DataSet"):
+            entry = d.get("file") or ""
+            # Entries name files inside the run directory (as orodem's own reader demands).
+            if not entry or os.path.isabs(entry) or ".." in entry.replace("\\", "/").split("/"):
+                raise ValueError(f"{pvd}: entry {entry!r} is not a file inside the run directory")
+            out.append((float(d.get("timestep")), os.path.join(self.path, entry)))
+        return out
 
     def snapshot_path(self, S):
         """The file of the snapshot whose S is nearest the given one. An S beyond the run's snapshots (by more

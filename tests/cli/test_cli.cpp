@@ -2,6 +2,7 @@
 // run directories and the packing cache (SPEC §4, §5). Every test runs the
 // real binary in a fresh temporary directory.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include "cli/cli_util.hpp"
 #include <stdlib.h>
@@ -282,6 +283,30 @@ TEST_F(Cli, MessagesNameTheRealProblem) {
         EXPECT_EQ(r.status, 2) << k.args << ": " << r.err;
         EXPECT_HAS(r.err, k.says);
     }
+}
+
+// A config that is a device (/dev/zero never ends), a FIFO (opening it
+// blocks until a writer comes) or is named with a newline (it would break
+// log.txt, events.csv and status) is refused at once: exit 2, one line,
+// nothing written. The shell's timeout makes a hang a failure, not a stall.
+TEST_F(Cli, AConfigThatIsADeviceOrAFifoOrNamedWithANewlineIsRefusedInOneLine) {
+    const fs::path fifo = work_ / "fifo.toml";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    for (const std::string& cfg : {std::string("/dev/zero"), fifo.string()}) {
+        for (const std::string args : {"check " + quote(cfg), "run " + quote(cfg) + " --out r"}) {
+            const Result r = orodem(args, "timeout 10");
+            EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+            EXPECT_EQ(count_lines(r.err), 1) << r.err;
+            EXPECT_HAS(r.err, "not a regular file");
+            EXPECT_FALSE(fs::exists(work_ / "r"));
+        }
+    }
+    write_tiny_exp1(work_, "a\nb.toml");
+    const Result r = orodem("run " + quote((work_ / "a\nb.toml").string()) + " --out r");
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_HAS(r.err, "a?b.toml': holds a control character");
+    EXPECT_FALSE(fs::exists(work_ / "r"));
 }
 
 // A layer of eleven million discs (below the size limit) is counted from its

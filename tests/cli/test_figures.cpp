@@ -233,6 +233,10 @@ TEST_F(Figures, MovieNeedsFfmpegAndMakesTheAnimation) {
     r = orodem("movie r --out sub/run.gif --color-by displacement --fps 2 --width 640");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(slurp(work_ / "sub" / "run.gif").substr(0, 4), "GIF8");
+    // A '%' in the folder's name is not an ffmpeg pattern.
+    r = orodem("movie r --out '100%d_s/run.mp4' --seconds 1 --fps 3");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(slurp(work_ / "100%d_s" / "run.mp4").substr(4, 4), "ftyp");
     // A fixed rate and length whatever the number of snapshots; cross-faded with --blend.
     r = orodem("movie r --out blend.mp4 --blend --seconds 3 --fps 10 --xlim -4,2 --title 'exp1, mu_bp = 0.3'");
     ASSERT_EQ(r.status, 0) << r.err;

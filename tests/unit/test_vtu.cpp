@@ -5,6 +5,7 @@
 // reads the same numbers.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <bit>
@@ -19,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "orodem/core/error.hpp"
 #include "orodem/io/vtu_writer.hpp"
 
 using namespace orodem;
@@ -155,6 +157,35 @@ TEST(Vtu, PvdListsEveryFileWithItsS) {
         EXPECT_EQ(got[k].second, entries[k].second);
         // S is written with 6 decimals: error ≤ 0.5e-6 (plus the parse's ulp).
         EXPECT_NEAR(got[k].first, entries[k].first, 0.5e-6 + 1e-15);
+    }
+    fs::remove_all(dir);
+}
+
+// run.pvd names files inside the run directory: an absolute entry or one
+// with '..' (measure and render would read outside the run), a device
+// (reading /dev/zero never ends) or a FIFO (opening it blocks) is refused
+// with a one-line IoError at once.
+TEST(Vtu, PvdEntriesOutsideTheRunAndFilesThatAreNotRegularAreRefused) {
+    const fs::path dir = scratch_dir("pvd-bad");
+    const fs::path pvd = dir / "run.pvd";
+    for (const char* entry : {"/etc/passwd", "../other/run.vtu", "snapshots/../../x.vtu", ""}) {
+        write_pvd(pvd.string(), {{0.0, "snapshots/s_00000.vtu"}, {0.5, entry}});
+        try {
+            (void)read_pvd(pvd.string());
+            ADD_FAILURE() << "accepted the entry '" << entry << "'";
+        } catch (const orodem::IoError& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find("not a file inside the run directory"), std::string::npos) << what;
+            EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+        }
+    }
+    write_pvd(pvd.string(), {{0.0, "snapshots/s_00000.vtu"}, {0.5, "./snapshots/s_00001.vtu"}});
+    EXPECT_EQ(read_pvd(pvd.string()).size(), 2u);  // a harmless './' stays allowed
+    const fs::path fifo = dir / "fifo.vtu";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    for (const std::string path : {std::string("/dev/zero"), fifo.string()}) {
+        EXPECT_THROW((void)read_vtu(path), orodem::IoError) << path;
+        EXPECT_THROW((void)read_pvd(path), orodem::IoError) << path;
     }
     fs::remove_all(dir);
 }

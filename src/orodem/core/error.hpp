@@ -31,10 +31,14 @@ public:
 /// written into paths, scripts and one-line tables, where one would break
 /// them (a newline in a Slurm option is a line of its own in the script).
 inline void refuse_control_characters(std::string_view what, std::string_view text) {
+    auto control = [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; };
     for (const char c : text)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-            throw ConfigError(std::string(what) + " '" + std::string(text.substr(0, 60)) +
+        if (control(c)) {
+            std::string shown;  // the message stays one line: each control character shown as '?'
+            for (const char d : text.substr(0, 60)) shown += control(d) ? '?' : d;
+            throw ConfigError(std::string(what) + " '" + shown +
                               "': holds a control character (a newline, a tab...); use printable characters only");
+        }
 }
 
 /// A failed read or write; what() names the path and the OS error.

@@ -535,6 +535,14 @@ Config load_config(const std::string& path, const std::vector<Override>& overrid
         throw ConfigError(fmt::format("{}: is a directory, not a config file; give a .toml file (a run directory's "
                                       "own is {}/config.toml)",
                                       path, path));
+    // A device (/dev/zero), a FIFO or a socket would block or never end: refused before opening.
+    const auto status = std::filesystem::status(path, ec);
+    if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+        throw ConfigError(fmt::format("{}: not a regular file (a device, FIFO or socket); give a .toml file", path));
+    constexpr std::uintmax_t kMaxConfigBytes = 16u << 20;  // far above any config (the largest preset is 5 kB)
+    if (!ec && std::filesystem::exists(status) && std::filesystem::file_size(path, ec) > kMaxConfigBytes && !ec)
+        throw ConfigError(fmt::format("{}: larger than {} MiB, not a config file; give a .toml file", path,
+                                      kMaxConfigBytes >> 20));
     std::ifstream in(path, std::ios::binary);
     if (!in) throw ConfigError(fmt::format("{}: cannot open config file", path));
     std::ostringstream ss;

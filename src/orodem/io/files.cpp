@@ -67,7 +67,16 @@ void write_file_atomic(const std::string& path, std::string_view bytes) {
     }
 }
 
-std::string read_file(const std::string& path) {
+std::string read_file(const std::string& path, std::uint64_t max_bytes) {
+    // stat before open: opening a FIFO without a writer blocks, /dev/zero never ends.
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) throw_io_error("cannot open", path);
+    if (!S_ISREG(st.st_mode))
+        throw IoError(fmt::format("cannot read '{}': not a regular file ({}); give a file", path,
+                                  S_ISDIR(st.st_mode) ? "a directory" : "a device, FIFO or socket"));
+    if (max_bytes != 0 && static_cast<std::uint64_t>(st.st_size) > max_bytes)
+        throw IoError(fmt::format("cannot read '{}': {} bytes, more than the {} such a file can have", path,
+                                  st.st_size, max_bytes));
     std::ifstream in(path, std::ios::binary);
     if (!in) throw_io_error("cannot open", path);
     std::ostringstream ss;

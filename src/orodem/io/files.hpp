@@ -15,8 +15,10 @@ namespace orodem {
 /// Writes bytes to path atomically (tmp + fsync + rename).
 void write_file_atomic(const std::string& path, std::string_view bytes);
 
-/// Reads a whole file; throws IoError if it cannot be opened or read.
-std::string read_file(const std::string& path);
+/// Reads a whole regular file; throws IoError if it cannot be opened or read,
+/// is not a regular file (a device such as /dev/zero, a FIFO or a socket would
+/// block or never end) or is longer than max_bytes (0: no limit).
+std::string read_file(const std::string& path, std::uint64_t max_bytes = 0);
 
 /// Creates a directory and its parents; throws IoError on failure.
 void make_dirs(const std::string& path);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -225,7 +226,9 @@ std::vector<Vec2> positions_by_id(const VtuData& d, const std::string& path, std
 }
 
 std::vector<Snapshot> read_pvd(const std::string& path) {
-    const std::string b = read_file(path);
+    // 64 MiB is 300,000 entries, far beyond wedge.output_ds's 1e5-output limit.
+    constexpr std::uint64_t kMaxPvdBytes = 64u << 20;
+    const std::string b = read_file(path, kMaxPvdBytes);
     auto attr = [&](std::size_t tag, std::size_t end, const std::string& key) -> std::string {
         const auto k = b.find(" " + key + "=\"", tag);
         if (k == std::string::npos || k > end) throw IoError(fmt::format("'{}': DataSet without {}", path, key));
@@ -240,6 +243,14 @@ std::vector<Snapshot> read_pvd(const std::string& path) {
         const double S = std::strtod(ts.c_str(), &stop);
         if (stop == ts.c_str()) throw IoError(fmt::format("'{}': timestep '{}' is not a number", path, ts));
         Snapshot s{S, attr(pos, end, "file")};
+        // Entries name files inside the run directory: an absolute path or a '..' would make measure and
+        // render read outside it.
+        const std::filesystem::path entry(s.file);
+        const bool escapes = s.file.empty() || entry.is_absolute() ||
+                             std::any_of(entry.begin(), entry.end(), [](const auto& part) { return part == ".."; });
+        if (escapes)
+            throw IoError(fmt::format("'{}': entry '{}' is not a file inside the run directory (absolute or with '..')",
+                                      path, s.file));
         if (!out.empty() && out.back().file == s.file) out.back() = s;
         else out.push_back(s);
     }

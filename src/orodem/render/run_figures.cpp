@@ -220,8 +220,12 @@ std::size_t render_run_movie(const SavedRun& run, const MovieOptions& o, const s
     // framerate (a cross-fade between consecutive snapshots).
     const double rate_in = static_cast<double>(run.snaps.size()) / o.seconds;
     const std::string timing = o.blend ? fmt::format("framerate=fps={:g}", o.fps) : fmt::format("fps={:g}", o.fps);
+    // ffmpeg reads '%' in an image-sequence name as a pattern: one in the folder's name is written '%%'.
+    std::string pattern;
+    for (const char ch : tmp.path) pattern += ch == '%' ? std::string("%%") : std::string(1, ch);
+    pattern += "/frame%05d.png";
     std::vector<std::string> args = {ffmpeg, "-nostdin", "-hide_banner", "-loglevel", "error", "-y",
-                                     "-framerate", fmt::format("{:.17g}", rate_in), "-i", tmp.path + "/frame%05d.png"};
+                                     "-framerate", fmt::format("{:.17g}", rate_in), "-i", pattern};
     if (format == "gif") {
         args.insert(args.end(), {"-vf", timing + ",split[a][b];[a]palettegen[p];[b][p]paletteuse", "-f", "gif"});
     } else {  // H.264 wants even sizes and 4:2:0 chroma for common players

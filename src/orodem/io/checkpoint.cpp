@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -231,6 +232,15 @@ std::string encode_checkpoint(const Simulation& sim, const RunLoopState& run, st
         w.put(e.requested_area);
         w.put(e.removed);
         w.put(e.eroded_bytes);
+        put_tag(w, "surface_paths");
+        w.put(e.reserve_begin);
+        w.put_vector(e.birth_S);
+        w.put_vector(e.erosion_S);
+        w.put_vector(e.sed_remainder);
+        w.put(e.deposited_area);
+        w.put(e.deposit_requested);
+        w.put(e.deposited);
+        w.put(e.deposited_discs);
     }
     if (run.flexure.on) {
         // Only in runs with [flexure]: every other checkpoint keeps its bytes.
@@ -419,6 +429,23 @@ void decode_checkpoint(std::string_view bytes, AcceptedHashes expected_config_ha
             r.get(e.removed);
             r.get(e.eroded_bytes);
             tag = r.get_string();
+            if (tag == "surface_paths") {
+                r.get(e.reserve_begin);
+                r.get_vector(e.birth_S);
+                r.get_vector(e.erosion_S);
+                if (e.reserve_begin > n || e.birth_S.size() != n || e.erosion_S.size() != n) bad("surface_paths sizes");
+                r.get_vector(e.sed_remainder);
+                r.get(e.deposited_area);
+                r.get(e.deposit_requested);
+                r.get(e.deposited);
+                r.get(e.deposited_discs);
+                tag = r.get_string();
+            } else {
+                // Written before the paths: the layer only, birth at S = 0, erosion S unknown.
+                e.reserve_begin = n;
+                e.birth_S.assign(n, 0.0);
+                e.erosion_S.assign(n, std::numeric_limits<double>::quiet_NaN());
+            }
         }
         if (tag == "flexure") {
             FlexureState& e = run.flexure;

@@ -55,6 +55,15 @@ struct SurfaceState {
     double requested_area = 0.0;         // Σ of the areas the law asked for [h0²]
     std::uint64_t removed = 0;           // particles (clusters, lone discs) removed: the next parking place [-]
     std::uint64_t eroded_bytes = 0;      // eroded.csv length [bytes]
+    // The particles' paths and sedimentation ("surface_paths" section).
+    std::uint64_t reserve_begin = 0;     // the first id of the sediment reserve; the layer's discs are below [-]
+    std::vector<double> birth_S;         // by id: S when deposited, 0 for the layer, NaN for the reserve [-]
+    std::vector<double> erosion_S;       // by id: S when eroded, NaN while present [-]
+    std::vector<double> sed_remainder;   // per surface column: deposit asked for and not yet placed [h0²]
+    double deposited_area = 0.0;         // Σ layer area of the deposited particles [h0²]
+    double deposit_requested = 0.0;      // Σ of the areas sedimentation asked for [h0²]
+    std::uint64_t deposited = 0;         // reserve particles deposited: the next one to place [-]
+    std::uint64_t deposited_discs = 0;   // their discs [-]
 };
 
 /// The plate under the wedge (run/wedge_flexure.hpp); saved in the

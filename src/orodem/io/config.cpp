@@ -258,6 +258,40 @@ void read_calibrate(Config& c, Section&& section, const std::string& file, bool 
     r.finish();
 }
 
+/// The sedimentation keys of [surface] (docs/physics.md "Sedimentation in
+/// the running wedge"): read only with surface.sediment other than "none", so
+/// a config without them resolves as before.
+void read_sedimentation(Config& c, Reader& r, toml::table& o) {
+    SurfaceConfig& s = c.surface;
+    s.sediment = r.choice("sediment", s.sediment, kSedimentSides);
+    if (!s.sedimenting()) {
+        o.erase("sediment");
+        return;
+    }
+    s.base_level = r.number("base_level", s.base_level, closed(-1.0, 100.0));
+    s.sediment_rate = r.number("sediment_rate", s.sediment_rate, non_negative());
+    if (c.layered()) {
+        s.sediment_material = r.string("sediment_material", c.layers.back().material);
+        if (std::none_of(c.materials.begin(), c.materials.end(),
+                         [&](const NamedMaterial& m) { return m.name == s.sediment_material; }))
+            r.refuse("sediment_material", fmt::format("no [materials.{}] in the config", s.sediment_material));
+    } else if (r.string("sediment_material", "") != "") {
+        r.refuse("sediment_material", "names a [materials.NAME] table, and this config has none (one material: the "
+                                      "sediment is [material]); remove the key");
+    } else {
+        o.erase("sediment_material");
+    }
+    s.sediment_reserve = r.number("sediment_reserve", s.sediment_reserve, non_negative());
+    if (s.sediment_reserve == 0.0) {
+        // The deficit below base_level over the layer's length, and as much
+        // again for what the plate carries into the wedge by s_max, with half
+        // again for the roughness of a loose fill [h0²].
+        const double length = c.packing.length / c.packing.h0;
+        s.sediment_reserve = 1.5 * std::max(0.0, s.base_level) * (length + c.wedge.s_max);
+        o.insert_or_assign("sediment_reserve", s.sediment_reserve);
+    }
+}
+
 /// [surface] of a wedge experiment (docs/physics.md "Erosion in the running
 /// wedge"). Absent: nothing is read or resolved, so every other config
 /// resolves as before. Each law reads its own parameter only.
@@ -301,6 +335,7 @@ void read_surface(Config& c, const toml::table& root, const std::string& file) {
         s.column_width = c.wedge.column_width / c.packing.h0;
         o.insert_or_assign("column_width", s.column_width);
     }
+    read_sedimentation(c, r, o);
     r.finish();
 }
 

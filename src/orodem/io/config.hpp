@@ -125,8 +125,9 @@ struct FrictionPair {
     double mu_residual = 0.0;         // residual μ [-]; default mu
 };
 
-/// [surface]: erosion applied while the belt runs (docs/physics.md "Erosion
-/// and sedimentation laws", "Erosion in the running wedge"); wedge
+/// [surface]: erosion and sedimentation applied while the belt runs
+/// (docs/physics.md "Erosion and sedimentation laws", "Erosion in the running
+/// wedge", "Sedimentation in the running wedge"); wedge
 /// experiments only. Absent: nothing is resolved and the run is as before.
 /// Rates in h0 per unit S, lengths in h0 (analysis/surface_laws.hpp).
 enum class SurfaceKind { none, elevation, slope, uniform, cap, diffusion };
@@ -134,6 +135,10 @@ inline constexpr Named<SurfaceKind> kSurfaceKinds[] = {
     {SurfaceKind::none, "none"},       {SurfaceKind::elevation, "elevation"}, {SurfaceKind::slope, "slope"},
     {SurfaceKind::uniform, "uniform"}, {SurfaceKind::cap, "cap"},             {SurfaceKind::diffusion, "diffusion"}};
 constexpr const char* name_of(SurfaceKind v) { return name_in(kSurfaceKinds, v); }
+enum class SedimentSide { none, pro, retro, both };
+inline constexpr Named<SedimentSide> kSedimentSides[] = {
+    {SedimentSide::none, "none"}, {SedimentSide::pro, "pro"}, {SedimentSide::retro, "retro"}, {SedimentSide::both, "both"}};
+constexpr const char* name_of(SedimentSide v) { return name_in(kSedimentSides, v); }
 struct SurfaceConfig {
     bool present = false;             // (not a key) the config has a [surface] table
     SurfaceKind law = SurfaceKind::none;  // none | elevation | slope | uniform | cap | diffusion
@@ -147,6 +152,12 @@ struct SurfaceConfig {
     double h_right = 0.0;             // diffusion, fixed ends: height held beyond the retro toe [h0]
     std::int64_t interval_steps = 100;  // apply every this many steps (100: the run loop's chunk) [-]
     double column_width = 0.0;        // surface column width [h0]; 0 = wedge.column_width
+    SedimentSide sediment = SedimentSide::none;  // none | pro | retro | both: the forelands to fill below base_level
+    double base_level = 0.0;          // sedimentation: fill up to this height above the incoming surface [h0]
+    double sediment_rate = 0.0;       // sedimentation: raise each column at most this fast; 0 = the whole deficit at each application [h0/S]
+    std::string sediment_material;    // sedimentation: a NAME of [materials.NAME] (layered configs only; default: the top layer's); without [materials] the sediment is [material]
+    double sediment_reserve = 0.0;    // sedimentation: layer area of new particles made ready at the start; 0 = 1.5 base_level (incoming plate + retroside + s_max) [h0²]
+    bool sedimenting() const { return sediment != SedimentSide::none; }
 };
 
 /// [flexure]: the 1D elastic plate under the wedge (docs/physics.md "Flexure

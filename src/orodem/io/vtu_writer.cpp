@@ -32,7 +32,8 @@ Array make_array(const std::string& name, const char* type, int comps, const std
 }  // namespace
 
 void write_vtu(const std::string& path, const ParticleStore& p, const std::vector<double>& rel_disp,
-               const VtuStamp* stamp, const StrainField* strain, const std::vector<double>* rel_disp_abs) {
+               const VtuStamp* stamp, const StrainField* strain, const std::vector<double>* rel_disp_abs,
+               const std::vector<VtuByIdArray>* by_id) {
     const std::size_t n = p.size();
     // Discs in id order, so that files of one run line up point by point.
     std::vector<double> pts(3 * n), vel(3 * n), radius(n), depth(n), omega(n), rd(n, 0.0);
@@ -93,6 +94,9 @@ void write_vtu(const std::string& path, const ParticleStore& p, const std::vecto
         for (std::uint32_t k = 0; k < n; ++k) abs[k] = (*rel_disp_abs)[p.slot_of_id[k]];
         all_point_data.push_back(make_array("rel_disp_abs", "Float64", 1, abs));
     }
+    if (by_id)
+        for (const VtuByIdArray& a : *by_id)
+            if (a.values && a.values->size() == n) all_point_data.push_back(make_array(a.name, "Float64", 1, *a.values));
     const Array points = make_array("Points", "Float64", 3, pts);
     const std::vector<Array> cells = {make_array("connectivity", "Int64", 1, conn),
                                       make_array("offsets", "Int64", 1, offs),

@@ -25,14 +25,23 @@ struct VtuStamp {
     double time = 0.0;       // simulated time [s]
 };
 
+/// A point array given by particle id, written after the others: the
+/// particles' paths of a run with [surface] (birth_S, max_burial_depth,
+/// erosion_S), absent from every other run's snapshots.
+struct VtuByIdArray {
+    std::string name;
+    const std::vector<double>* values = nullptr;  // by id, the store's size
+};
+
 /// rel_disp: per slot (may be empty: written as zeros). stamp: S, step and
 /// time as field data (none when null). strain: by particle id, written as
 /// shear_strain, vol_strain, rotation and d2min (none when null).
 /// rel_disp_abs: per slot, the relative displacement before normalisation
-/// [m], written as rel_disp_abs after the others (none when null).
+/// [m], written as rel_disp_abs after the others (none when null). by_id:
+/// arrays written last, in their order (none when null or empty).
 void write_vtu(const std::string& path, const ParticleStore& p, const std::vector<double>& rel_disp,
                const VtuStamp* stamp = nullptr, const StrainField* strain = nullptr,
-               const std::vector<double>* rel_disp_abs = nullptr);
+               const std::vector<double>* rel_disp_abs = nullptr, const std::vector<VtuByIdArray>* by_id = nullptr);
 
 /// run.pvd listing (S, file name relative to the pvd) pairs.
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& entries);

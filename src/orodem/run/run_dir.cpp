@@ -14,6 +14,7 @@
 #include "orodem/io/checkpoint.hpp"
 #include "orodem/io/fault_table.hpp"
 #include "orodem/io/files.hpp"
+#include "orodem/run/surface_erosion.hpp"
 
 namespace fs = std::filesystem;
 
@@ -42,7 +43,11 @@ std::vector<RunDirFile> run_dir_files() {
          "ParaView time series (time value = S): per disc `id`, `radius`, `velocity`, `initial_depth`, `side` (0 pro, "
          "1 retro), `cluster_id`, `rel_disp` (normalised per snapshot), `omega`, `fixed`, `asleep`, `shear_strain`, "
          "`vol_strain`, `rotation`, `d2min`, `shear_strain_total` (finite, from S = 0), `rel_disp_abs` (m), in layered "
-         "runs `material`, `layer`, `damage` (mean disc diameters); field data `S`, `step`, `time`. Units and normalisation of each: [python.md](python.md)"},
+         "runs `material`, `layer`, `damage` (mean disc diameters), with `[surface]` `birth_S`, `max_burial_depth` "
+         "(h0), `erosion_S`; field data `S`, `step`, `time`. Units and normalisation of each: [python.md](python.md)"},
+        {"`eroded.csv`", fmt::format("with `[surface]` only: one row per disc removed by erosion, `{}` (x from the S "
+                                     "point, depths in h0; birth S 0 for the layer, the deposition S for a deposit)",
+                                     eroded_header())},
         {"`figures/`",
          "`horizons_S*.png` (initial-depth bands, retroside darker), `displacement_S*.png` (relative displacement of "
          "neighbours since the previous output per unit convergence, on one fixed colour bar), `strain_S*.png` (each "

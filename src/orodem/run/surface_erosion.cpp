@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -11,15 +12,16 @@
 namespace orodem {
 
 std::string surface_series_header() {
-    return "influx_area,eroded_area,stored_area,ledger_error,wedge_area,eroded_discs,erosion_asked";
+    return "influx_area,eroded_area,stored_area,ledger_error,wedge_area,eroded_discs,erosion_asked,deposited_area,"
+           "deposited_discs,deposit_asked";
 }
 
 std::string surface_series_line(const SurfaceLedger& l) {
-    return fmt::format("{:.9g},{:.9g},{:.9g},{:.6g},{:.6g},{},{:.9g}", l.influx, l.eroded, l.stored, l.error,
-                       l.wedge_area, l.removed_discs, l.asked);
+    return fmt::format("{:.9g},{:.9g},{:.9g},{:.6g},{:.6g},{},{:.9g},{:.9g},{},{:.9g}", l.influx, l.eroded, l.stored,
+                       l.error, l.wedge_area, l.removed_discs, l.asked, l.deposited, l.deposited_discs, l.deposit_asked);
 }
 
-std::string eroded_header() { return "id,x_over_h0,S,max_burial_depth_over_h0,initial_depth_over_h0"; }
+std::string eroded_header() { return "id,x_over_h0,S,max_burial_depth_over_h0,initial_depth_over_h0,birth_S"; }
 
 SurfaceLaw surface_law_of(const SurfaceConfig& s) {
     SurfaceLaw law;
@@ -43,29 +45,44 @@ SurfaceLaw surface_law_of(const SurfaceConfig& s) {
 }
 
 SurfaceErosion::SurfaceErosion(const Config& c, const WedgeSetup& w)
-    : on_(c.surface.present), law_(surface_law_of(c.surface)),
+    : on_(c.surface.present), law_(surface_law_of(c.surface)), rule_on_(c.surface.sedimenting()),
       interval_(static_cast<std::uint64_t>(std::max<std::int64_t>(1, c.surface.interval_steps))), h0_(c.packing.h0),
-      w_(w) {
+      r_max_(c.packing.r_max), r_min_(c.packing.r_min), w_(w) {
     if (!on_) return;
     column_ = c.surface.column_width * h0_;
     layer_length_ = c.packing.length / h0_;
-    // Parking: a cluster lies within 3 r_max of its centroid (three touching
-    // discs in a row at most), so places 6 r_max + 2 skins apart are never
-    // contact candidates (a pair is one within the sum of its radii plus
-    // the skin); the first row 2 h0 below the base, far from every wall
-    // (the bases are y = 0), rows along the whole layer's length.
-    const double skin = w.sim.params.skin;
-    park_pitch_ = 6.0 * c.packing.r_max + 2.0 * skin;
-    park_x0_ = -w.pro_length + 0.5 * park_pitch_;
-    park_y0_ = -2.0 * h0_;
-    park_per_row_ = std::max<std::uint64_t>(
-        1, static_cast<std::uint64_t>(std::floor((w.pro_length + w.retro_length) / park_pitch_)) - 1);
-    // Σ π R² in id order (the same sum in a resumed run, whatever the slots).
-    const ParticleStore& p = w.sim.particles;
-    std::vector<double> r_by_id(p.size(), 0.0);
-    for (std::size_t s = 0; s < p.size(); ++s) r_by_id[p.id[s]] = p.radius[s];
+    park_ = parking_grid(c, w);
+    rule_.base_level = c.surface.base_level;
+    rule_.at_once = c.surface.sediment_rate == 0.0;
+    rule_.rate = c.surface.sediment_rate;
+    fill_pro_ = c.surface.sediment == SedimentSide::pro || c.surface.sediment == SedimentSide::both;
+    fill_retro_ = c.surface.sediment == SedimentSide::retro || c.surface.sediment == SedimentSide::both;
+    if (c.layered()) {
+        layer_pro_ = static_cast<std::uint8_t>(c.layers.size() - 1);
+        layer_retro_ = static_cast<std::uint8_t>(c.retro_layers.empty() ? 0 : c.retro_layers.size() - 1);
+    }
+}
+
+void SurfaceErosion::bind(const ParticleStore& p, std::uint64_t reserve_begin) {
+    // Σ π R² over the layer's discs in id order (the same sum in a resumed
+    // run, whatever the slots); the reserve's particles, in id order.
+    const std::size_t n = p.size();
+    std::vector<double> r_by_id(n, 0.0);
+    for (std::size_t s = 0; s < n; ++s) r_by_id[p.id[s]] = p.radius[s];
     solid_total_ = 0.0;
-    for (const double r : r_by_id) solid_total_ += std::numbers::pi * r * r;
+    for (std::size_t id = 0; id < reserve_begin && id < n; ++id) solid_total_ += std::numbers::pi * r_by_id[id] * r_by_id[id];
+    reserve_.clear();
+    for (std::uint32_t id = static_cast<std::uint32_t>(reserve_begin); id < n;) {
+        const std::int32_t cl = p.cluster[p.slot_of_id[id]];
+        Reserve q;
+        q.first = id;
+        while (id < n && (q.count == 0 || (cl >= 0 && p.cluster[p.slot_of_id[id]] == cl))) {
+            q.area += layer_length_ * (std::numbers::pi * r_by_id[id] * r_by_id[id]) / solid_total_;
+            ++q.count;
+            ++id;
+        }
+        reserve_.push_back(q);
+    }
 }
 
 double SurfaceErosion::area_of(const ParticleStore& p, std::size_t slot) const {
@@ -73,7 +90,7 @@ double SurfaceErosion::area_of(const ParticleStore& p, std::size_t slot) const {
     return layer_length_ * (std::numbers::pi * r * r) / solid_total_;
 }
 
-void SurfaceErosion::start(const ParticleStore& p, SurfaceState& st) const {
+void SurfaceErosion::start(const ParticleStore& p, SurfaceState& st) {
     st = SurfaceState{};
     st.on = on_;
     if (!on_) return;
@@ -82,6 +99,16 @@ void SurfaceErosion::start(const ParticleStore& p, SurfaceState& st) const {
     st.remainder.assign(static_cast<std::size_t>(ncol), 0.0);
     st.max_burial.assign(p.size(), 0.0);
     for (std::size_t s = 0; s < p.size(); ++s) st.max_burial[p.id[s]] = p.initial_depth[s] / h0_;
+    st.reserve_begin = std::min<std::uint64_t>(w_.reserve_begin, p.size());
+    st.birth_S.assign(p.size(), 0.0);
+    for (std::size_t id = st.reserve_begin; id < p.size(); ++id) st.birth_S[id] = std::numeric_limits<double>::quiet_NaN();
+    st.erosion_S.assign(p.size(), std::numeric_limits<double>::quiet_NaN());
+    if (rule_on_) st.sed_remainder.assign(static_cast<std::size_t>(ncol), 0.0);
+    bind(p, st.reserve_begin);
+}
+
+void SurfaceErosion::resume(const ParticleStore& p, const SurfaceState& st) {
+    if (on_) bind(p, st.reserve_begin);
 }
 
 void SurfaceErosion::apply(Simulation& sim, SurfaceState& st, double S, std::vector<Vec2>& x_then, LineFile& eroded) {
@@ -119,29 +146,50 @@ void SurfaceErosion::apply(Simulation& sim, SurfaceState& st, double S, std::vec
         if (std::isfinite(t)) st.max_burial[id] = std::max(st.max_burial[id], (t - p.x[s].y) / h0_);
     }
 
-    st.requested_area += surface_request(law_, h_, column_ / h0_, dS, erode_, deposit_, ws_).eroded;
+    bool moved = false;
+    if (law_.kind != SurfaceLawKind::none) {
+        st.requested_area += surface_request(law_, h_, column_ / h0_, dS, erode_, deposit_, ws_).eroded;
+        erode(sim, st, S, top, x_then, eroded);
+        moved = !take_.ids.empty();
+    }
+    if (rule_on_) {
+        const std::uint64_t before = st.deposited;
+        deposit(sim, st, S, dS, top, pp.x_s + m.peak_dx_over_h0 * h0_, x_then);
+        moved = moved || st.deposited != before;
+    }
+    if (moved) sim.request_rebuild();
+}
 
+void SurfaceErosion::erode(Simulation& sim, SurfaceState& st, double S, const std::vector<double>& top,
+                           std::vector<Vec2>& x_then, LineFile& eroded) {
+    ParticleStore& p = sim.particles;
+    const std::size_t n = p.size();
+    const std::size_t ncol = top.size();
+    const ProfileParams& pp = w_.profile;
     // Candidates: lone discs and whole clusters (centroid, summed area),
     // above the incoming surface, by the column of their centroid.
-    std::vector<double> cx(n, 0.0), cy(n, 0.0), carea(n, 0.0);
-    std::vector<std::uint32_t> ccount(n, 0), cfirst(n, 0);
+    cx_.assign(n, 0.0);
+    cy_.assign(n, 0.0);
+    carea_.assign(n, 0.0);
+    ccount_.assign(n, 0);
+    cfirst_.assign(n, 0);
     for (std::uint32_t id = 0; id < n; ++id) {
         const std::size_t s = p.slot_of_id[id];
         if (p.flags[s] & kFlagRemoved) continue;
         const std::size_t k = p.cluster[s] >= 0 ? static_cast<std::size_t>(p.cluster[s]) : n;
         if (k == n) continue;
-        if (ccount[k]++ == 0) cfirst[k] = id;
-        cx[k] += p.x[s].x;
-        cy[k] += p.x[s].y;
-        carea[k] += area_of(p, s);
+        if (ccount_[k]++ == 0) cfirst_[k] = id;
+        cx_[k] += p.x[s].x;
+        cy_[k] += p.x[s].y;
+        carea_[k] += area_of(p, s);
     }
     cands_.clear();
-    std::vector<std::size_t> col_of;
+    col_of_.clear();
     auto consider = [&](std::uint32_t id, double x, double y, double a) {
         const double fc = std::floor((x - pp.x_min) / column_);
         if (fc < 0.0 || fc >= static_cast<double>(ncol) || !(y > pp.y_mean)) return;
         cands_.push_back({id, a, (y - pp.y_mean) / h0_});
-        col_of.push_back(static_cast<std::size_t>(fc));
+        col_of_.push_back(static_cast<std::size_t>(fc));
     };
     for (std::uint32_t id = 0; id < n; ++id) {
         const std::size_t s = p.slot_of_id[id];
@@ -149,45 +197,42 @@ void SurfaceErosion::apply(Simulation& sim, SurfaceState& st, double S, std::vec
         consider(id, p.x[s].x, p.x[s].y, area_of(p, s));
     }
     for (std::size_t k = 0; k < n; ++k)
-        if (ccount[k] > 0) {
-            const double cnt = static_cast<double>(ccount[k]);
-            consider(cfirst[k], cx[k] / cnt, cy[k] / cnt, carea[k]);
+        if (ccount_[k] > 0) {
+            const double cnt = static_cast<double>(ccount_[k]);
+            consider(cfirst_[k], cx_[k] / cnt, cy_[k] / cnt, carea_[k]);
         }
     // Grouped by column (a stable counting sort).
     column_begin_.assign(ncol + 1, 0);
-    for (const std::size_t c : col_of) ++column_begin_[c + 1];
+    for (const std::size_t c : col_of_) ++column_begin_[c + 1];
     for (std::size_t c = 0; c < ncol; ++c) column_begin_[c + 1] += column_begin_[c];
-    std::vector<WholeCandidate> sorted(cands_.size());
-    {
-        std::vector<std::size_t> fill(column_begin_.begin(), column_begin_.end() - 1);
-        for (std::size_t k = 0; k < cands_.size(); ++k) sorted[fill[col_of[k]]++] = cands_[k];
-    }
-    take_whole_particles(st.remainder, erode_, column_begin_, sorted, take_);
-    if (take_.ids.empty()) return;
+    sorted_.resize(cands_.size());
+    fill_.assign(column_begin_.begin(), column_begin_.end() - 1);
+    for (std::size_t k = 0; k < cands_.size(); ++k) sorted_[fill_[col_of_[k]]++] = cands_[k];
+    take_whole_particles(st.remainder, erode_, column_begin_, sorted_, take_);
 
     // Removal: each taken particle's discs, parked together.
-    std::vector<std::uint32_t> members;
     for (const std::uint64_t taken : take_.ids) {
         const std::size_t s0 = p.slot_of_id[taken];
-        members.clear();
+        members_.clear();
         if (p.cluster[s0] < 0) {
-            members.push_back(static_cast<std::uint32_t>(taken));
+            members_.push_back(static_cast<std::uint32_t>(taken));
         } else {
             const std::int32_t cl = p.cluster[s0];
-            for (std::uint32_t id = static_cast<std::uint32_t>(taken); id < n && members.size() < ccount[static_cast<std::size_t>(cl)]; ++id)
-                if (p.cluster[p.slot_of_id[id]] == cl) members.push_back(id);
+            for (std::uint32_t id = static_cast<std::uint32_t>(taken);
+                 id < n && members_.size() < ccount_[static_cast<std::size_t>(cl)]; ++id)
+                if (p.cluster[p.slot_of_id[id]] == cl) members_.push_back(id);
         }
         Vec2 centre{0.0, 0.0};
-        for (const std::uint32_t id : members) centre = centre + p.x[p.slot_of_id[id]];
-        centre = centre * (1.0 / static_cast<double>(members.size()));
-        const Vec2 place{park_x0_ + static_cast<double>(st.removed % park_per_row_) * park_pitch_,
-                         park_y0_ - static_cast<double>(st.removed / park_per_row_) * park_pitch_};
+        for (const std::uint32_t id : members_) centre = centre + p.x[p.slot_of_id[id]];
+        centre = centre * (1.0 / static_cast<double>(members_.size()));
+        const Vec2 place = park_.place(reserve_.size() + st.removed);
         ++st.removed;
-        for (const std::uint32_t id : members) {
+        for (const std::uint32_t id : members_) {
             const std::size_t s = p.slot_of_id[id];
-            eroded.line(fmt::format("{},{:.6g},{:.6f},{:.6g},{:.6g}", id, (p.x[s].x - w_.profile.x_s) / h0_, S,
-                                    st.max_burial[id], p.initial_depth[s] / h0_));
+            eroded.line(fmt::format("{},{:.6g},{:.6f},{:.6g},{:.6g},{:.6f}", id, (p.x[s].x - pp.x_s) / h0_, S,
+                                    st.max_burial[id], p.initial_depth[s] / h0_, st.birth_S[id]));
             st.eroded_area += area_of(p, s);
+            st.erosion_S[id] = S;
             p.fix(s);
             p.flags[s] = static_cast<std::uint8_t>((p.flags[s] | kFlagRemoved) & ~kFlagAsleep);
             p.x[s] = place + (p.x[s] - centre);
@@ -196,7 +241,120 @@ void SurfaceErosion::apply(Simulation& sim, SurfaceState& st, double S, std::vec
             if (id < x_then.size()) x_then[id] = p.x[s];
         }
     }
-    sim.request_rebuild();
+}
+
+void SurfaceErosion::deposit(Simulation& sim, SurfaceState& st, double S, double dS, const std::vector<double>& top,
+                             double crest_x, std::vector<Vec2>& x_then) {
+    ParticleStore& p = sim.particles;
+    const std::size_t n = p.size();
+    const std::size_t ncol = top.size();
+    const ProfileParams& pp = w_.profile;
+    const double dx = column_ / h0_;  // [h0]
+    // The forelands' columns as the erosion leaves them [h0]; every other
+    // column (the other side of the crest, an empty column, one within a
+    // particle's reach of an end wall) at the base level: nothing to fill.
+    const double reach = 3.0 * r_max_;  // a particle's extent from its centroid [m]
+    const double x_lo = sim.walls[kWallProEnd].a.x + reach;
+    const double x_hi = sim.walls.size() > kWallRetroEnd ? sim.walls[kWallRetroEnd].a.x - reach : pp.x_max;
+    hd_.assign(ncol, rule_.base_level);
+    for (std::size_t c = 0; c < ncol; ++c) {
+        const double x0 = pp.x_min + static_cast<double>(c) * column_, x1 = x0 + column_;
+        const double xc = 0.5 * (x0 + x1);
+        const bool side = xc < crest_x ? fill_pro_ : fill_retro_;
+        if (side && std::isfinite(top[c]) && x0 >= x_lo && x1 <= x_hi)
+            hd_[c] = (top[c] - pp.y_mean) / h0_ - erode_[c] / dx;
+    }
+    st.deposit_requested += sedimentation_request(rule_, hd_, dx, dS, deposit_);
+    if (st.sed_remainder.size() != ncol) st.sed_remainder.assign(ncol, 0.0);
+    // At once, the deficit itself is the state: nothing carried over.
+    if (rule_.at_once) std::fill(st.sed_remainder.begin(), st.sed_remainder.end(), 0.0);
+
+    // The present discs by column (linked lists by id), for the drop heights.
+    constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+    head_.assign(ncol, kNone);
+    next_.assign(n, kNone);
+    for (std::uint32_t id = 0; id < n; ++id) {
+        const std::size_t s = p.slot_of_id[id];
+        if (p.flags[s] & kFlagRemoved) continue;
+        const double fc = std::floor((p.x[s].x - pp.x_min) / column_);
+        if (fc < 0.0 || fc >= static_cast<double>(ncol)) continue;
+        next_[id] = head_[static_cast<std::size_t>(fc)];
+        head_[static_cast<std::size_t>(fc)] = id;
+    }
+    for (std::size_t c = 0; c < ncol; ++c) {
+        double& r = st.sed_remainder[c];
+        r += deposit_[c];
+        // Whole particles, rounding the running request to the nearest one.
+        while (st.deposited < reserve_.size() && r >= 0.5 * reserve_[st.deposited].area) {
+            const Reserve& q = reserve_[st.deposited];
+            place(p, st, q, c, S, sim.params.m_inertia_min, x_then);
+            r -= q.area;
+            ++st.deposited;
+        }
+    }
+}
+
+void SurfaceErosion::place(ParticleStore& p, SurfaceState& st, const Reserve& q, std::size_t column, double S,
+                           double m_inertia_min, std::vector<Vec2>& x_then) {
+    const ProfileParams& pp = w_.profile;
+    const std::size_t ncol = head_.size();
+    constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+    // Across the column by the golden-ratio sequence of the deposit count:
+    // successive particles of a column spread over it.
+    const double frac = std::fmod(0.5 + 0.6180339887498949 * static_cast<double>(st.deposited), 1.0);
+    const double x = pp.x_min + (static_cast<double>(column) + frac) * column_;
+    // The discs' offsets from their centroid (as parked: rigid).
+    Vec2 centre{0.0, 0.0};
+    for (std::uint32_t k = 0; k < q.count; ++k) centre = centre + p.x[p.slot_of_id[q.first + k]];
+    centre = centre * (1.0 / static_cast<double>(q.count));
+    offsets_.clear();
+    for (std::uint32_t k = 0; k < q.count; ++k) offsets_.push_back(p.x[p.slot_of_id[q.first + k]] - centre);
+    // The lowest centroid height at which no disc comes within `gap` of a
+    // present disc or of the base (y = 0): dropped from there, it lands
+    // without an overlap.
+    const double gap = 0.05 * r_min_;
+    const auto span = static_cast<std::size_t>(std::ceil((3.0 * r_max_ + 2.0 * r_max_ + gap) / column_));
+    double y = 0.0;
+    for (std::uint32_t k = 0; k < q.count; ++k) {
+        const double rk = p.radius[p.slot_of_id[q.first + k]];
+        const Vec2 o = offsets_[k];
+        y = std::max(y, rk + gap - o.y);
+        const std::size_t c0 = column > span ? column - span : 0, c1 = std::min(ncol - 1, column + span);
+        for (std::size_t c = c0; c <= c1; ++c)
+            for (std::uint32_t j = head_[c]; j != kNone; j = next_[j]) {
+                const std::size_t sj = p.slot_of_id[j];
+                const double d = rk + p.radius[sj] + gap;
+                const double ddx = p.x[sj].x - (x + o.x);
+                if (std::abs(ddx) < d) y = std::max(y, p.x[sj].y + std::sqrt(d * d - ddx * ddx) - o.y);
+            }
+    }
+    // Placed at (x, y), moving with its side's rigid motion (the belt's
+    // left of the S point, rest right of it), in the reverse of a removal.
+    const SleepParams& sp = w_.sim.params.sleep;
+    const Vec2 at{x, y};
+    for (std::uint32_t k = 0; k < q.count; ++k) {
+        const std::uint32_t id = q.first + k;
+        const std::size_t s = p.slot_of_id[id];
+        p.x[s] = at + offsets_[k];
+        p.flags[s] = static_cast<std::uint8_t>(p.flags[s] & ~(kFlagFixed | kFlagRemoved | kFlagReserve));
+        p.set_free_inertia(s, m_inertia_min);
+        p.v[s] = p.x[s].x < sp.x_split ? sp.u_left : sp.u_right;
+        p.omega[s] = 0.0;
+        p.force[s] = {};
+        p.torque[s] = 0.0;
+        p.side[s] = p.x[s].x > 0.0 ? 1 : 0;
+        if (p.has_materials()) p.layer[s] = p.side[s] ? layer_retro_ : layer_pro_;
+        st.birth_S[id] = S;
+        st.max_burial[id] = 0.0;
+        st.deposited_area += area_of(p, s);
+        ++st.deposited_discs;
+        if (id < x_then.size()) x_then[id] = p.x[s];
+        const double fc = std::floor((p.x[s].x - pp.x_min) / column_);
+        if (fc >= 0.0 && fc < static_cast<double>(ncol)) {
+            next_[id] = head_[static_cast<std::size_t>(fc)];
+            head_[static_cast<std::size_t>(fc)] = id;
+        }
+    }
 }
 
 SurfaceLedger SurfaceErosion::ledger(const ParticleStore& p, const SurfaceState& st, double S,
@@ -205,14 +363,17 @@ SurfaceLedger SurfaceErosion::ledger(const ParticleStore& p, const SurfaceState&
     double present = 0.0;
     for (std::uint32_t id = 0; id < p.size(); ++id) {
         const std::size_t s = p.slot_of_id[id];
-        if (p.flags[s] & kFlagRemoved) ++l.removed_discs;
-        else present += area_of(p, s);
+        if (!(p.flags[s] & kFlagRemoved)) present += area_of(p, s);
+        else if (!(p.flags[s] & kFlagReserve)) ++l.removed_discs;
     }
     l.influx = S;
     l.eroded = st.eroded_area;
+    l.deposited = st.deposited_area;
     l.asked = st.requested_area;
+    l.deposit_asked = st.deposit_requested;
+    l.deposited_discs = st.deposited_discs;
     l.stored = present - (layer_length_ - S);
-    l.error = l.influx - l.eroded - l.stored;
+    l.error = l.influx - l.eroded + l.deposited - l.stored;
     l.wedge_area = wedge_area_m2 / (h0_ * h0_);
     return l;
 }

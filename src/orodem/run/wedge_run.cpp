@@ -116,6 +116,7 @@ WedgeRun::WedgeRun(const Config& c, WedgeSetup& w, const std::string& dir, RunLo
         if (resumed_ && !st_.surface.on)
             throw ConfigError("the checkpoint has no erosion state ([surface]); resume with the run's own config.toml");
         if (!resumed_) surface_.start(sim_.particles, st_.surface);
+        else surface_.resume(sim_.particles, st_.surface);
         eroded_file_ = LineFile(dir_ + "/eroded.csv");
         if (!resumed_) eroded_file_.line(eroded_header());
     }
@@ -347,7 +348,7 @@ void WedgeRun::measure_structures() {
     if (sim_.step_count > 0 && st_.outputs > 0) {
         std::vector<double> radius(x_now.size());
         for (std::size_t s = 0; s < sim_.particles.size(); ++s) radius[sim_.particles.id[s]] = sim_.particles.radius[s];
-        if (st_.surface.removed > 0) {  // eroded discs, parked below the base, are not on it
+        if (st_.surface.removed > 0 || surface_.sedimenting()) {  // parked discs (eroded, the reserve) are not on the base
             std::vector<Vec2> x_then = st_.x_then;
             for (std::size_t s = 0; s < sim_.particles.size(); ++s)
                 if (sim_.particles.flags[s] & kFlagRemoved) x_then[sim_.particles.id[s]] = {std::nan(""), std::nan("")};
@@ -389,7 +390,12 @@ void WedgeRun::draw() {
     st_.x_then = positions_by_id(sim_.particles);
     const std::string name = fmt::format("S{:06.3f}", S());
     const VtuStamp stamp{S(), sim_.step_count, sim_.time};
-    write_vtu(fmt::format("{}/snapshots/{}.vtu", dir_, name), sim_.particles, rel, &stamp, &strain_, &rel_m);
+    // With [surface], the particles' paths (by id).
+    const std::vector<VtuByIdArray> paths = {{"birth_S", &st_.surface.birth_S},
+                                             {"max_burial_depth", &st_.surface.max_burial},
+                                             {"erosion_S", &st_.surface.erosion_S}};
+    write_vtu(fmt::format("{}/snapshots/{}.vtu", dir_, name), sim_.particles, rel, &stamp, &strain_, &rel_m,
+              surface_.on() ? &paths : nullptr);
     st_.pvd.emplace_back(S(), fmt::format("snapshots/{}.vtu", name));
     write_pvd(dir_ + "/run.pvd", st_.pvd);
     const ParticleStore& p = sim_.particles;

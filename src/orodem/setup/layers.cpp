@@ -35,15 +35,11 @@ MaterialTable material_table(const Config& c) {
     return t;
 }
 
-namespace {
-
 std::uint8_t material_id(const Config& c, const std::string& name) {
     for (std::size_t k = 0; k < c.materials.size(); ++k)
         if (c.materials[k].name == name) return static_cast<std::uint8_t>(k);
     return 0;  // not reached: the loader refuses unknown names
 }
-
-}  // namespace
 
 void assign_material(const Config& c, ParticleStore& p, const std::string& name) {
     const std::size_t n = p.size();

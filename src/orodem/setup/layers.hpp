@@ -26,6 +26,10 @@ MaterialTable material_table(const Config& c);
 /// basal-friction block's layers are fractions of calibrate.block_height).
 void assign_layers(const Config& c, ParticleStore& p, double unit = 0.0);
 
+/// The id of material `name` in c.materials (its index; the loader refuses
+/// unknown names).
+std::uint8_t material_id(const Config& c, const std::string& name);
+
 /// Every particle of p in material `name` of c.materials (layer 0): the
 /// biaxial test of calibrate.material. Masses as assign_layers.
 void assign_material(const Config& c, ParticleStore& p, const std::string& name);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -304,7 +305,68 @@ WedgeSetup make_wedge(const Config& c, const ParticleStore& layer, const RunNumb
     ws.profile = wedge_profile_params(c);
     // Undeformed surface: the incoming layer away from both ends.
     ws.profile.y_mean = undeformed_surface(p, ws.profile, c);
+    add_sediment_reserve(c, ws);  // nothing without sedimentation
     return ws;
+}
+
+ParkingGrid parking_grid(const Config& c, const WedgeSetup& w) {
+    ParkingGrid g;
+    g.pitch = 6.0 * c.packing.r_max + 2.0 * w.sim.params.skin;
+    g.x0 = -w.pro_length + 0.5 * g.pitch;
+    g.y0 = -2.0 * c.packing.h0;
+    g.per_row = std::max<std::uint64_t>(
+        1, static_cast<std::uint64_t>(std::floor((w.pro_length + w.retro_length) / g.pitch)) - 1);
+    return g;
+}
+
+std::size_t add_sediment_reserve(const Config& c, WedgeSetup& w) {
+    ParticleStore& p = w.sim.particles;
+    const std::size_t n = p.size();
+    w.reserve_begin = static_cast<std::uint32_t>(n);
+    if (!c.surface.sedimenting() || n == 0 || !(c.surface.sediment_reserve > 0.0)) return 0;
+    // The layer's particles in id order (a cluster at its smallest id), and
+    // the layer area of a disc: L0 π R² / Σ π R² [h0²].
+    std::int32_t max_cluster = -1;
+    for (std::size_t s = 0; s < n; ++s) max_cluster = std::max(max_cluster, p.cluster[s]);
+    std::vector<std::vector<std::uint32_t>> members(static_cast<std::size_t>(max_cluster + 1));
+    double solid = 0.0;
+    for (std::uint32_t id = 0; id < n; ++id) {
+        const std::size_t s = p.slot_of_id[id];
+        solid += kPi * p.radius[s] * p.radius[s];
+        if (p.cluster[s] >= 0) members[static_cast<std::size_t>(p.cluster[s])].push_back(id);
+    }
+    std::vector<std::vector<std::uint32_t>> templates;
+    for (std::uint32_t id = 0; id < n; ++id) {
+        const std::int32_t cl = p.cluster[p.slot_of_id[id]];
+        if (cl < 0) templates.push_back({id});
+        else if (members[static_cast<std::size_t>(cl)].front() == id) templates.push_back(members[static_cast<std::size_t>(cl)]);
+    }
+    const double layer_length = c.packing.length / c.packing.h0;  // L0 [h0]
+    const bool layered = p.has_materials();
+    const std::uint8_t mat = layered ? material_id(c, c.surface.sediment_material) : 0;
+    const double rho = layered ? c.materials[mat].m.density : c.material.density;  // [kg/m³]
+    const ParkingGrid g = parking_grid(c, w);
+    double area = 0.0;
+    std::int32_t next_cluster = max_cluster + 1;
+    std::size_t made = 0;
+    for (; area < c.surface.sediment_reserve; ++made) {
+        const std::vector<std::uint32_t>& t = templates[made % templates.size()];
+        Vec2 centre{0.0, 0.0};
+        for (const std::uint32_t id : t) centre = centre + p.x[p.slot_of_id[id]];
+        centre = centre * (1.0 / static_cast<double>(t.size()));
+        const Vec2 place = g.place(made);
+        const std::int32_t cluster = p.cluster[p.slot_of_id[t.front()]] >= 0 ? next_cluster++ : -1;
+        for (const std::uint32_t id : t) {
+            const Vec2 at = place + (p.x[p.slot_of_id[id]] - centre);
+            const double r = p.radius[p.slot_of_id[id]];
+            const std::size_t s = p.add(at, r, rho, cluster);
+            p.fix(s);
+            p.flags[s] = static_cast<std::uint8_t>(p.flags[s] | kFlagRemoved | kFlagReserve);
+            if (layered) p.material[s] = mat;
+            area += layer_length * kPi * r * r / solid;
+        }
+    }
+    return made;
 }
 
 }  // namespace orodem

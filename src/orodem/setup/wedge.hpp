@@ -49,7 +49,35 @@ struct WedgeSetup {
     BasalBoundary* base = nullptr;           // the proside base law, owned by sim.boundaries
     CoulombBase* retro_base = nullptr;       // exp3 under the Coulomb law: the retroside base
     FixedRetroside* fixed_retro = nullptr;   // exp1, exp2 only
+    std::uint32_t reserve_begin = 0;         // with sedimentation: the first id of the sediment reserve
+                                             // (add_sediment_reserve); the layer's discs are the ids below
 };
+
+/// The parking places of particles out of the model ([surface]): eroded ones
+/// and the sediment reserve. A cluster lies within 3 r_max of its centroid
+/// (three touching discs in a row at most), so places 6 r_max + 2 skins apart
+/// are never contact candidates (a pair is one within the sum of its radii
+/// plus the skin); the first row 2 h0 below the base, far from every wall
+/// (the bases are y = 0), rows along the whole layer's length. The reserve
+/// takes the first places, eroded particles the places after it.
+struct ParkingGrid {
+    double x0 = 0.0, y0 = 0.0, pitch = 0.0;  // place 0 and the spacing [m]
+    std::uint64_t per_row = 1;                // places in a row [-]
+    Vec2 place(std::uint64_t k) const {
+        return {x0 + static_cast<double>(k % per_row) * pitch, y0 - static_cast<double>(k / per_row) * pitch};
+    }
+};
+ParkingGrid parking_grid(const Config& c, const WedgeSetup& w);
+
+/// Sedimentation's reserve ([surface] sediment, docs/physics.md
+/// "Sedimentation in the running wedge"): copies of the layer's particles
+/// (clusters and lone discs, in id order, repeated) with the ids after the
+/// layer's, in the sediment material, until their layer area reaches
+/// surface.sediment_reserve h0²; each is fixed, flagged kFlagRemoved |
+/// kFlagReserve and parked at its place of parking_grid (reserve particle j
+/// at place j), out of every contact and measure until it is deposited.
+/// Sets w.reserve_begin. Returns the number of reserve particles.
+std::size_t add_sediment_reserve(const Config& c, WedgeSetup& w);
 
 struct RunNumbers;
 

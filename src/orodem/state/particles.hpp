@@ -22,6 +22,8 @@ enum ParticleFlag : std::uint8_t {
     kFlagAsleep = 1u << 1, ///< in a sleeping zone: moves rigidly, inv_mass = inv_inertia = 0 (engine/sleep.cpp)
     kFlagRemoved = 1u << 2, ///< eroded: fixed (kFlagFixed too) and parked below the base, out of every contact
                             ///< and measure; its slot and id stay (run/surface_erosion.hpp)
+    kFlagReserve = 1u << 3, ///< sediment not yet deposited: parked like an eroded disc (kFlagRemoved and
+                            ///< kFlagFixed too) until sedimentation places it (setup/wedge.hpp add_sediment_reserve)
 };
 
 struct ParticleStore {

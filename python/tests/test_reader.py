@@ -125,3 +125,37 @@ def test_snapshot_beyond_the_run_is_refused(run_dir):
     with pytest.raises(ValueError):
         r.snapshot(float("nan"))
     assert r.snapshot_path(last) == r.snapshot_path(last + 0.01)
+
+
+def test_the_paths_of_a_run_with_surface(tmp_path):
+    """A run with [surface] (erosion and both forelands filled): its snapshots carry each disc's
+    birth_S, max_burial_depth and erosion_S, which agree with eroded.csv; a run without has none."""
+    cfg = tmp_path / "surface.toml"
+    cfg.write_text(TINY.format(cache=tmp_path / "cache").replace("s_max = 0.3", "s_max = 1.5")
+                   .replace("pro_margin = 5.0", "pro_margin = 4.0")
+                   + '[surface]\nlaw = "elevation"\nk = 2.0\nsediment = "both"\nbase_level = 0.3\n'
+                   'sediment_rate = 0.5\nsediment_reserve = 20.0\n')
+    out = tmp_path / "run"
+    subprocess.run([EXE, "run", str(cfg), "--out", str(out), "--threads", "1", "--set", "wedge.output_ds=0.5"],
+                   check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    r = orodem.open_run(out)
+    s = r.snapshot(r.outputs[-1])
+    birth, burial, eroded_at = s["birth_S"], s["max_burial_depth"], s["erosion_S"]
+    assert birth.shape == burial.shape == eroded_at.shape == s["id"].shape
+    deposited = birth > 0
+    assert deposited.any() and (birth[deposited] <= r.outputs[-1] + 1e-9).all()
+    assert np.isnan(birth).any()  # the reserve not yet deposited
+    assert (burial[~np.isnan(birth)] >= 0).all()
+    with open(out / "eroded.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert rows
+    by_id = dict(zip(s["id"].tolist(), eroded_at.tolist()))
+    for row in rows:
+        assert by_id[int(row["id"])] == pytest.approx(float(row["S"]), abs=1e-6)
+    assert np.isfinite(eroded_at).sum() == len(rows)
+
+
+def test_a_run_without_surface_has_no_paths(run_dir):
+    r = orodem.open_run(run_dir)
+    s = r.snapshot(r.outputs[-1])
+    assert "birth_S" not in s and "max_burial_depth" not in s and "erosion_S" not in s

@@ -19,6 +19,7 @@ struct CommonArgs {
     std::string config;
     std::vector<std::string> sets;
     int threads = -1;  // -1: from the config
+    bool force = false;  // run, sweep: start a run estimated above kLongRunHours
 };
 
 /// The config of a, its --set and --threads applied (load_config: ConfigError if bad).

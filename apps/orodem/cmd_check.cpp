@@ -122,21 +122,16 @@ int cmd_check(const CommonArgs& a) {
                    c.wedge.pro_margin, pe.front_h0, c.wedge.s_max, pe.alpha_deg, pe.phi_deg, pe.phi_b_deg,
                    pe.pro_margin_min);
         if (const std::string w = short_plate_warning(c, pe); !w.empty()) fmt::print(stderr, "orodem: warning: {}\n", w);
-        // Rates of wedge runs per awake disc (counted as below) on the 2-core
-        // development host of 7 Dec 2026 (AMD EPYC Zen 5 VM; docs/benchmarks.md
-        // "Wall times"): 2 threads from the paper-size exp1 (636.3 s to S = 8,
-        // 8.7e7) and the intermediate one (172.1 s, 9.7e7), 1 thread from the
-        // intermediate one (291.3 s, 5.7e7). The Intel host of 6 Dec ran wedges
-        // about 2.2 times slower: other machines differ as much.
-        constexpr double kRate1 = 5.7e7, kRate2 = 9.0e7;  // awake disc-steps/s, 1 and 2 threads
-        const double awake = c.wedge.sleep ? 0.45 : 1.0;
-        const double work = steps * static_cast<double>(n) * 0.8 * awake;  // 0.8: the cut to h0
-        fmt::print("steps to S = {:g}       = {:.3g} ({:.3g} {}disc-steps)\n", c.wedge.s_max, steps, work,
+        const RunTimeEstimate e = estimate_run_time(c, static_cast<double>(n), t.dt);
+        fmt::print("steps to S = {:g}       = {:.3g} ({:.3g} {}disc-steps)\n", c.wedge.s_max, steps, e.work,
                    c.wedge.sleep ? "awake " : "");
         fmt::print("estimated run time     = {} on 1 thread, {} on 2 (at {:.2g} and {:.2g} {}disc-steps/s measured on "
-                   "the 2-core development host{}; machines differ by 2-3x; plus settling if not cached)\n",
-                   duration_text(work / kRate1), duration_text(work / kRate2), kRate1, kRate2,
-                   c.wedge.sleep ? "awake " : "", c.wedge.sleep ? ", 45% of the discs awake" : "");
+                   "the 2-core development host{}; machines differ by 2-3x; plus settling if not cached){}\n",
+                   duration_text(e.seconds_1), duration_text(e.seconds_2), e.work / e.seconds_1,
+                   e.work / e.seconds_2, c.wedge.sleep ? "awake " : "", c.wedge.sleep ? ", 45% of the discs awake" : "",
+                   e.seconds_2 > 3600.0 * kLongRunHours
+                       ? fmt::format("; above {:g} h: orodem run refuses it without --force", kLongRunHours)
+                       : "");
         if (c.wedge.drag_gain > 0.0) {
             // The uncapped drag at full slip, g_d m v'/dt, on a disc of the mean
             // radius R over the weight rho g h0 2R of a column h0 tall on its

@@ -23,6 +23,7 @@ int cmd_run(const CommonArgs& a, const std::string& out_arg, bool resume) {
     TerminalObserver terminal;
     if (resume) return resume_run(c, n, out_arg, terminal);
     const std::string dir = choose_run_dir(out_arg, c.path);
+    check_run_time(c, n, a.force, "the run");
     make_dirs(dir);
     return start_run_in(c, n, dir, terminal);
 }

@@ -55,6 +55,7 @@ int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& o
     const auto [key, values] = parse_vary(vary);
     std::vector<Config> configs;  // every member validated before anything is written
     for (const auto& v : values) configs.push_back(sweep_member(a, key, v));
+    for (const Config& c : configs) check_run_time(c, check_runnable(c), a.force, "a run of the sweep");
     const std::string root = new_sweep_dir(out_arg, a.config);
     if (slurm) require_slurm_command("sbatch");  // without sbatch nothing is written
     const Sweep sweep = create_sweep(root, SweepManifest{a.config, key, values, a.sets}, configs);

@@ -86,6 +86,7 @@ int main(int argc, char** argv) {
     run->add_option("--out", out, "Output directory (new or empty); default runs/<config name>");
     run->add_option("--set", run_args.sets, "Override a config value, e.g. --set material.mu=0.5")->take_all();
     run->add_option("--threads", run_args.threads, "OpenMP threads (0 = all cores)")->check(CLI::Range(0, 1024));
+    run->add_flag("--force", run_args.force, "Start a run estimated to take more than a week (refused otherwise)");
     bool resume = false;
     run->add_flag("--resume", resume, "Continue the run in --out DIR from its newest usable checkpoint (same config; "
                                       "the outputs end up as those of an uninterrupted run)");
@@ -139,6 +140,7 @@ int main(int argc, char** argv) {
     sweep->add_option("--out", sweep_out, "Output directory (new or empty); default runs/<config name>-sweep");
     sweep->add_option("--set", sweep_args.sets, "Override a config value")->take_all();
     sweep->add_option("--threads", sweep_args.threads, "OpenMP threads (0 = all cores)")->check(CLI::Range(0, 1024));
+    sweep->add_flag("--force", sweep_args.force, "Start runs estimated to take more than a week (refused otherwise)");
     int sweep_jobs = 1;
     sweep->add_option("--jobs", sweep_jobs, "Runs at once, each in its own process with the cores shared among "
                                             "them unless --threads is given")

@@ -309,6 +309,32 @@ TEST_F(Cli, AConfigThatIsADeviceOrAFifoOrNamedWithANewlineIsRefusedInOneLine) {
     EXPECT_FALSE(fs::exists(work_ / "r"));
 }
 
+// A run estimated above kLongRunHours (a week) on 2 threads, here a slow
+// belt under a long plate, is refused by run and sweep before anything is
+// written, naming --force; check says so; with --force it starts (stopped
+// at once here by the wall-time limit, exit 5) and prints the estimate.
+TEST_F(Cli, ARunEstimatedAboveAWeekNeedsForce) {
+    write_tiny_exp1(work_);
+    const std::string slow =
+        " --set wedge.pro_margin=60 --set wedge.v=1e-6 --set wedge.s_max=4 --set wedge.output_ds=0.1";
+    Result r = orodem("run tiny.toml --out r" + slow);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_HAS(r.err, "more than 168 h");
+    EXPECT_HAS(r.err, "--force");
+    EXPECT_FALSE(fs::exists(work_ / "r"));
+    r = orodem("sweep tiny.toml --vary wedge.mu_bp=0.1,0.3 --out sw" + slow);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_HAS(r.err, "a run of the sweep would take about");
+    EXPECT_FALSE(fs::exists(work_ / "sw"));
+    r = orodem("check tiny.toml" + slow);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_HAS(r.out, "above 168 h: orodem run refuses it without --force");
+    r = orodem("run tiny.toml --out r --force --set run.max_wall_minutes=0.005" + slow);
+    EXPECT_EQ(r.status, 5) << r.err;
+    EXPECT_HAS(r.out, "estimated run time: about");
+}
+
 // A layer of eleven million discs (below the size limit) is counted from its
 // area, not generated: check answers at once (generating it took 5 s).
 TEST_F(Cli, CheckOfAHugeLayerEstimatesItsDiscsInsteadOfGeneratingThem) {

@@ -167,6 +167,37 @@ RunNumbers check_runnable(const Config& c) {
     return derive_run_numbers(c);
 }
 
+RunTimeEstimate estimate_run_time(const Config& c, double discs, double dt) {
+    // Rates of wedge runs per awake disc (counted as below) on the 2-core
+    // development host of 7 Dec 2026 (AMD EPYC Zen 5 VM; docs/benchmarks.md
+    // "Wall times"): 2 threads from the paper-size exp1 (636.3 s to S = 8,
+    // 8.7e7) and the intermediate one (172.1 s, 9.7e7), 1 thread from the
+    // intermediate one (291.3 s, 5.7e7). The Intel host of 6 Dec ran wedges
+    // about 2.2 times slower: other machines differ as much.
+    constexpr double kRate1 = 5.7e7, kRate2 = 9.0e7;  // awake disc-steps/s, 1 and 2 threads
+    RunTimeEstimate e;
+    e.steps = c.wedge.s_max * c.packing.h0 / (c.wedge.v * dt);
+    const double awake = c.wedge.sleep ? 0.45 : 1.0;
+    e.work = e.steps * discs * 0.8 * awake;  // 0.8: the cut to h0
+    e.seconds_1 = e.work / kRate1;
+    e.seconds_2 = e.work / kRate2;
+    return e;
+}
+
+void check_run_time(const Config& c, const RunNumbers& n, bool force, const std::string& what) {
+    if (!is_wedge(c)) return;
+    const RunTimeEstimate e = estimate_run_time(c, estimated_disc_count(c.packing), n.timestep.dt);
+    auto hours = [](double s) { return fmt::format("{:.3g} h", s / 3600.0); };
+    if (e.seconds_2 > 3600.0 * kLongRunHours && !force)
+        throw ConfigError(fmt::format(
+            "{} would take about {} on 2 threads ({:.3g} steps to S = {:g} at wedge.v = {:g} m/s, dt = {:.3g} s), "
+            "more than {:g} h: check wedge.v, wedge.s_max and packing.h0, or add --force to start it anyway",
+            what, hours(e.seconds_2), e.steps, c.wedge.s_max, c.wedge.v, n.timestep.dt, kLongRunHours));
+    if (e.seconds_1 >= 3600.0)
+        fmt::print("estimated run time: about {} on 1 thread, {} on 2 (orodem check explains)\n", hours(e.seconds_1),
+                   hours(e.seconds_2));
+}
+
 std::string short_plate_warning(const Config& c, const PlateEstimate& pe) {
     if (experiment_of(c).push_wall || c.wedge.pro_margin >= pe.pro_margin_min) return "";
     return fmt::format("wedge.pro_margin = {:g} h0 is shorter than the {:.1f} h0 the deformation front may need by "

@@ -20,6 +20,24 @@ namespace orodem {
 /// stable timestep, and the base law's checks (check_wedge_base). Returns the
 /// numbers derived on the way, for the run to use.
 RunNumbers check_runnable(const Config& c);
+/// A wedge run's cost from its config alone (orodem check prints it; run and
+/// sweep print it and refuse a run above kLongRunHours without --force).
+struct RunTimeEstimate {
+    double steps = 0.0;      // to wedge.s_max [-]
+    double work = 0.0;       // (awake) disc-steps [-]
+    double seconds_1 = 0.0;  // on 1 thread at the development host's rate [s]
+    double seconds_2 = 0.0;  // on 2 threads [s]
+};
+/// A run estimated above this many hours on 2 threads needs --force: a
+/// week, far beyond a paper-size run (minutes), where a mistyped speed or
+/// output interval (wedge.v = 1e-9: 668,000 h) lands.
+inline constexpr double kLongRunHours = 168.0;
+/// The estimate for c with `discs` discs generated (before the cut to h0), dt [s].
+RunTimeEstimate estimate_run_time(const Config& c, double discs, double dt);
+/// Prints the estimate (one line) before a run or sweep starts, and throws
+/// ConfigError (exit 2) if it is above kLongRunHours unless force; nothing
+/// has been written when it throws. `what`: "the run", "each run".
+void check_run_time(const Config& c, const RunNumbers& n, bool force, const std::string& what);
 /// A one-line warning when the wedge's incoming plate is shorter than the
 /// estimate (plate_estimate) says the deformation front needs; "" otherwise.
 std::string short_plate_warning(const Config& c, const PlateEstimate& pe);

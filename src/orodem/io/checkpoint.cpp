@@ -548,13 +548,15 @@ std::string write_checkpoint(const std::string& dir, std::uint64_t step, std::st
 }
 
 std::string restore_newest_checkpoint(const std::string& dir, AcceptedHashes expected_config_hash, Simulation& sim,
-                                      RunLoopState& run, std::vector<std::string>* notes) {
+                                      RunLoopState& run, std::vector<std::string>* notes,
+                                      const std::function<std::string(const RunLoopState&)>& fits) {
     const auto all = list_checkpoints(dir);
     std::string reasons;
     for (const auto& [step, path] : all) {
         try {
             const std::string bytes = read_file(path);
             decode_checkpoint(bytes, expected_config_hash, sim, run);
+            if (const std::string misfit = fits ? fits(run) : std::string(); !misfit.empty()) throw IoError(misfit);
             return path;
         } catch (const ConfigError& e) {
             throw ConfigError(fmt::format("{}: {}", path, e.what()));

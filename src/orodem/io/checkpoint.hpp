@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -156,7 +157,10 @@ std::vector<std::pair<std::uint64_t, std::string>> list_checkpoints(const std::s
 /// back to older ones; `notes` gets one line per file skipped and why.
 /// Returns the path used. Throws CheckpointError when none is usable, and
 /// ConfigError (not falling back) when a checkpoint was made from another config.
+/// `fits` (when given) is asked of each decoded checkpoint: a non-empty answer (why the files on disk do not
+/// match it, e.g. a series.csv shorter than it recorded after a power loss) skips it like a damaged one.
 std::string restore_newest_checkpoint(const std::string& dir, AcceptedHashes expected_config_hash, Simulation& sim,
-                                      RunLoopState& run, std::vector<std::string>* notes = nullptr);
+                                      RunLoopState& run, std::vector<std::string>* notes = nullptr,
+                                      const std::function<std::string(const RunLoopState&)>& fits = {});
 
 }  // namespace orodem

@@ -289,8 +289,39 @@ int resume_locked(const Config& c, const RunNumbers& n, const std::string& dir, 
     RunLoopState st;
     std::vector<std::string> notes;
     std::string path;
+    // A checkpoint fits the files on disk when each appended file is at least as long as it recorded and its
+    // snapshots exist. After a power loss the newest checkpoint can be on disk while the rows written just before
+    // it are not (the files are fsync'ed before each checkpoint, but a disk may reorder): the resume then falls
+    // back to the newest checkpoint that fits, and cuts the files back to it.
+    auto fits = [&dir](const RunLoopState& s) -> std::string {
+        const struct {
+            const char* name;
+            std::uint64_t bytes;
+            bool kept;
+        } appended[] = {{"series.csv", s.series_bytes, true},
+                        {"log.txt", s.log_bytes, true},
+                        {"faults.csv", s.faults_bytes, s.faults_bytes > 0},
+                        {"eroded.csv", s.surface.eroded_bytes, s.surface.on},
+                        {"flexure.csv", s.flexure.profile_bytes, s.flexure.on}};
+        for (const auto& f : appended) {
+            if (!f.kept) continue;
+            std::error_code ec;
+            const std::uintmax_t size = fs::file_size(fs::path(dir) / f.name, ec);
+            const std::uint64_t have = ec ? 0 : static_cast<std::uint64_t>(size);
+            if (have < f.bytes)
+                return fmt::format("{} is {} bytes, shorter than the {} it had when this checkpoint was written (lost "
+                                   "after it, as in a power failure); an older checkpoint is used",
+                                   f.name, have, f.bytes);
+        }
+        for (const auto& entry : s.pvd) {
+            std::error_code ec;
+            if (!fs::is_regular_file(fs::path(dir) / entry.second, ec))
+                return fmt::format("its snapshot {} is missing; an older checkpoint is used", entry.second);
+        }
+        return "";
+    };
     try {
-        path = restore_newest_checkpoint(dir + "/checkpoint", accepted_config_hashes(c), w.sim, st, &notes);
+        path = restore_newest_checkpoint(dir + "/checkpoint", accepted_config_hashes(c), w.sim, st, &notes, fits);
     } catch (const CheckpointError& e) {
         // Every checkpoint is damaged: nothing to continue from; nothing changed.
         throw ConfigError(fmt::format("--resume {}: {}; nothing was changed. Keep the run as it is, or start it "

@@ -77,7 +77,7 @@ int cmd_render(const RenderArgs& a) {
         refuse_existing({a.out}, a.force, "render");
         const std::vector<std::size_t> chosen = nearest_snapshots(run.snaps, a.at.empty() ? default_stack(run.snaps) : a.at);
         RunFaultLines faults;
-        if (is_strain(a.color_by) || a.color_by == ColorBy::damage)
+        if (needs_snapshot_array(a.color_by))
             for (std::size_t k : chosen) require_colour_data(run, k, a.color_by);  // exit 2, nothing written
         if (is_strain(a.color_by)) faults = fault_lines_of(run);
         const fs::path parent = fs::absolute(a.out).parent_path();
@@ -142,7 +142,7 @@ int cmd_movie(const MovieArgs& a) {
     o.frame = frame_choice(a.xlim, a.title);
     movie_frames(run.snaps.size(), o);          // exit 2 before anything is drawn
     saved_run_view(run, a.width, o.frame);
-    if (is_strain(a.color_by) || a.color_by == ColorBy::damage)
+    if (needs_snapshot_array(a.color_by))
         require_colour_data(run, run.snaps.size() - 1, a.color_by);  // exit 2, nothing written
     if (is_strain(a.color_by)) o.faults = fault_lines_of(run);
     const std::size_t frames = render_run_movie(run, o, a.out);

@@ -147,6 +147,9 @@ TEST_F(Surface, WithSedimentationTheLedgerClosesAtEveryOutputAndTheSnapshotsCarr
     const std::size_t er = column(h, "eroded_area"), dep = column(h, "deposited_area"),
                       nd = column(h, "deposited_discs"), asked = column(h, "deposit_asked");
     expect_ledger_closes(rows);
+    // Deposits land without an overlap spike: no pair beyond run.warn_overlap_ratio (0.1 R) at any output.
+    for (std::size_t k = 1; k < rows.size(); ++k)
+        EXPECT_LT(std::stod(rows[k][column(h, "max_overlap_ratio")]), 0.1) << "row " << k;
     const auto& last = rows.back();
     const double deposited = std::stod(last[dep]), eroded = std::stod(last[er]);
     EXPECT_GT(deposited, 0.0) << "nothing was deposited";
@@ -165,6 +168,12 @@ TEST_F(Surface, WithSedimentationTheLedgerClosesAtEveryOutputAndTheSnapshotsCarr
     const auto e = csv(slurp(work_ / "A" / "eroded.csv"));
     ASSERT_GT(e.size(), 1u);
     for (std::size_t k = 1; k < e.size(); ++k) EXPECT_LE(std::stod(e[k][5]), std::stod(e[k][2])) << "row " << k;
+    // The pictures: growth strata by their deposition S, the largest burial depth.
+    for (const std::string by : {"deposition", "burial"}) {
+        const Result p = orodem("render A --out " + by + ".png --at 1.5 --color-by " + by);
+        EXPECT_EQ(p.status, 0) << p.err;
+        EXPECT_TRUE(fs::exists(work_ / (by + ".png"))) << by;
+    }
 }
 
 TEST_F(Surface, AnInterruptedSedimentingRunResumesToTheBytesOfAnUninterruptedOne) {
@@ -217,6 +226,12 @@ TEST_F(Surface, WithoutTheTableNothingIsResolvedAndTheColumnsAreTheOldOnes) {
     ASSERT_EQ(orodem("run " + quote(off.string()) + " --out B --threads 2").status, 0);
     EXPECT_EQ(slurp(work_ / "A" / "config.toml").find("surface"), std::string::npos);
     EXPECT_FALSE(fs::exists(work_ / "A" / "eroded.csv"));
+    // No paths in its snapshots: the growth strata cannot be drawn (exit 2, one line, nothing written).
+    const Result p = orodem("render A --out strata.png --color-by deposition");
+    EXPECT_EQ(p.status, 2) << p.err;
+    EXPECT_NE(p.err.find("holds no birth_S array"), std::string::npos) << p.err;
+    EXPECT_EQ(std::count(p.err.begin(), p.err.end(), '\n'), 1) << p.err;
+    EXPECT_FALSE(fs::exists(work_ / "strata.png"));
     EXPECT_NE(slurp(work_ / "B" / "config.toml").find("[surface]"), std::string::npos);
     // law = "none": the same run, with the ledger's columns after the others.
     const auto a = csv(slurp(work_ / "A" / "series.csv")), b = csv(slurp(work_ / "B" / "series.csv"));

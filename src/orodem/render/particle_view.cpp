@@ -16,6 +16,7 @@ namespace {
 constexpr Colour kBandA{0.93, 0.76, 0.38}, kBandB{0.55, 0.70, 0.85};
 constexpr double kRetroShade = 0.55;
 constexpr Colour kBlack{0, 0, 0}, kSPoint{0.8, 0.0, 0.0}, kWhite{1, 1, 1};
+constexpr Colour kPathGrey{0.80, 0.80, 0.80};  // growth strata: the layer's discs
 // Fault lines on strain maps: pro-vergent solid blue, retro-vergent dashed
 // green (told apart by style too, in grey print and for colour-blind eyes).
 constexpr Colour kProFault{0.05, 0.30, 0.95}, kRetroFault{0.0, 0.60, 0.25};
@@ -162,6 +163,7 @@ void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layou
     auto py = [&](double y) { return top + (o.y_max - y) * L.scale; };
     const bool by_disp = o.color_by == ColorBy::displacement, by_strain = is_strain(o.color_by);
     const bool by_damage = o.color_by == ColorBy::damage;
+    const bool by_path = o.color_by == ColorBy::deposition || o.color_by == ColorBy::burial;
     const ParticleStore& p = *panel.p;
     const bool layered = p.has_materials();  // layer hues and damage (a layered run's snapshots)
     c.clip(x0, top, L.plot_w, L.plot_h);
@@ -176,7 +178,12 @@ void draw_panel(Canvas& c, const Panel& panel, const ViewOptions& o, const Layou
         if (x + r < o.x_min || x - r > o.x_max || y + r < o.y_min) continue;
         cut_above = cut_above || y + r > o.y_max;
         if (y - r > o.y_max) continue;
-        const Colour col = by_strain ? bar_colour(g, panel.strain ? (*panel.strain)[s] : 0.0)
+        const double path = by_path && panel.path ? (*panel.path)[s] : std::nan("");
+        // Growth strata: the layer's discs (birth S 0) grey, each deposit by its S.
+        const bool grey = by_path && (!(path >= 0.0) || (o.color_by == ColorBy::deposition && !(path > 0.0)));
+        const Colour col = grey ? kPathGrey
+                           : by_path ? bar_colour(g, path)
+                           : by_strain ? bar_colour(g, panel.strain ? (*panel.strain)[s] : 0.0)
                            : by_damage ? bar_colour(g, layered ? p.damage[s] : 0.0)
                            : !by_disp ? (layered ? layer_colour(p.layer[s], p.initial_depth[s], o.band, p.side[s] != 0)
                                                  : horizon_colour(p.initial_depth[s], o.band, p.side[s] != 0))
@@ -256,6 +263,7 @@ ViewOptions run_view(const ConfigBasics& b, int width_px) {
     v.title = b.experiment;
     v.output_ds = b.output_ds;
     v.layers = b.layers;
+    v.s_max = b.s_max;
     return v;
 }
 
@@ -295,6 +303,26 @@ Legend picture_legend(const ViewOptions& o) {
         g.hi = kDamageHi;
         g.log_scale = true;
         for (double t = g.lo; t <= g.hi * (1 + 1e-9); t *= 10.0) g.ticks.push_back(t);
+        return g;
+    }
+    if (o.color_by == ColorBy::deposition) {
+        g.title = "growth strata: S of deposition [-] (the layer grey)";
+        g.lo = 0.0;
+        g.hi = o.s_max > 0.0 ? o.s_max : 1.0;
+        // Ticks at a round step (1, 2 or 5 times a power of ten), at most five intervals.
+        const double p10 = std::pow(10.0, std::floor(std::log10(g.hi / 5.0)));
+        double step = p10;
+        for (const double m : {1.0, 2.0, 5.0, 10.0})
+            if (g.hi / (m * p10) <= 5.0) { step = m * p10; break; }
+        g.hi = step * std::ceil(g.hi / step - 1e-9);  // the bar ends at a tick
+        for (double t = 0.0; t <= g.hi * (1 + 1e-9); t += step) g.ticks.push_back(t);
+        return g;
+    }
+    if (o.color_by == ColorBy::burial) {
+        g.title = "largest burial depth [h0]";
+        g.lo = 0.0;
+        g.hi = kBurialHi;
+        for (int k = 0; k <= 4; ++k) g.ticks.push_back(g.hi * k / 4.0);
         return g;
     }
     if (o.layers > 0) {  // a layered run: one hue family per layer, bands of initial depth within it

@@ -51,13 +51,16 @@
 namespace orodem {
 
 /// What a picture's discs are coloured by (orodem render and movie --color-by): the initial-depth horizons, the
-/// relative displacement since the previous output, the shear strain of the output interval, or since S = 0.
-enum class ColorBy { horizons, displacement, strain, strain_total, damage };
+/// relative displacement since the previous output, the shear strain of the output interval, or since S = 0,
+/// a layered run's damage, a run with [surface]'s growth strata (deposition S) or largest burial depth.
+enum class ColorBy { horizons, displacement, strain, strain_total, damage, deposition, burial };
 inline constexpr Named<ColorBy> kColorBys[] = {{ColorBy::horizons, "horizons"},
                                                {ColorBy::displacement, "displacement"},
                                                {ColorBy::strain, "strain"},
                                                {ColorBy::strain_total, "strain_total"},
-                                               {ColorBy::damage, "damage"}};
+                                               {ColorBy::damage, "damage"},
+                                               {ColorBy::deposition, "deposition"},
+                                               {ColorBy::burial, "burial"}};
 constexpr const char* name_of(ColorBy v) { return name_in(kColorBys, v); }
 
 /// Top of the displacement colour bar: relative displacement / (ΔS h0) [-].
@@ -68,6 +71,8 @@ inline constexpr double kStrainLo = 1e-3, kStrainHi = 1.0;
 inline constexpr double kStrainTotalLo = 1e-2, kStrainTotalHi = 10.0;
 /// The damage bar of a layered run (log scale): sliding distance [mean disc diameters].
 inline constexpr double kDamageLo = 1e-2, kDamageHi = 100.0;
+/// The largest burial depth bar of a run with [surface]: max_burial_depth [h0].
+inline constexpr double kBurialHi = 2.0;
 
 /// A fault drawn on a strain map: a segment from root to tip [m] (the run's
 /// coordinates: x from the S point, y from the base), and its vergence (+1
@@ -96,6 +101,7 @@ struct ViewOptions {
     bool per_frame_scale = false;  // displacement values are normalised per frame (old snapshots)
     double displacement_quantile = 0.99;  // per_frame_scale only: of the positive values, the full-colour one
     std::size_t layers = 0;        // a layered run's layers from the base (the horizons legend's hues); 0: one material
+    double s_max = 0;              // the run's last S (the deposition bar's top; 0: 1)
 };
 
 /// The frame of every picture of a run (see the note above): x from half an
@@ -124,6 +130,9 @@ Legend picture_legend(const ViewOptions& o);
 
 /// Whether color_by is one of the strain maps (strain, strain_total).
 constexpr bool is_strain(ColorBy c) { return c == ColorBy::strain || c == ColorBy::strain_total; }
+/// Whether color_by draws an array that only some runs' snapshots hold (strain maps: runs made since they
+/// exist; damage: layered runs; deposition, burial: runs with [surface]).
+constexpr bool needs_snapshot_array(ColorBy c) { return c != ColorBy::horizons && c != ColorBy::displacement; }
 
 /// The colour of value v on g's colour bar: linear or logarithmic between
 /// lo and hi; v below lo (on a log bar also v ≤ 0) or NaN takes the bottom
@@ -143,6 +152,9 @@ struct Panel {
     const std::vector<double>* strain = nullptr;
     /// strain, strain_total: the lines drawn over the discs (null: none).
     const std::vector<FaultLine>* faults = nullptr;
+    /// Per slot, color_by = deposition: birth S (0 or NaN: the layer's, drawn
+    /// grey); burial: the largest burial depth [h0]. Null: every disc grey.
+    const std::vector<double>* path = nullptr;
 };
 
 /// Pixel size and legend of a written picture.

@@ -131,6 +131,14 @@ void plot_series(const std::vector<Series>& runs, const std::vector<std::string>
     SeriesPanel height{"(b) Wedge height", "H / h0", {}};
     SeriesPanel peak{"(c) Peak deviation from the S point", "(x_peak − x_S) / h0", {}};
     SeriesPanel dil{"(d) Dilation", "D (%)", {}};
+    // Runs with [surface] (every run has the ledger's columns): its areas in two more panels.
+    const bool ledger = !runs.empty() && std::all_of(runs.begin(), runs.end(), [](const Series& s) {
+        return s.column("eroded_area") && s.column("deposited_area") && s.column("stored_area") &&
+               s.column("influx_area") && s.column("ledger_error");
+    });
+    SeriesPanel moved{"(e) Eroded (solid) and deposited (dashed) area", "area / h0²", {}};
+    SeriesPanel stored{"(f) Stored area (solid) against the influx (dashed)", "area / h0²", {}};
+    double worst_error = 0.0, influx_at_worst = 0.0;  // the ledger's largest |closure error| [h0²]
     // Legend: which line is which angle (in black), then one colour per run,
     // over a swatch of its band when it has one.
     std::vector<plot::LegendEntry> legend = {{"α (prowedge)", {}, false, false, 0.0, true},
@@ -179,6 +187,16 @@ void plot_series(const std::vector<Series>& runs, const std::vector<std::string>
         height.curves.push_back(curve("H_over_h0", false));
         peak.curves.push_back(curve("peak_dx_over_h0", false));
         dil.curves.push_back(curve("dilation_pct", false));
+        if (ledger) {
+            moved.curves.push_back(curve("eroded_area", false));
+            moved.curves.push_back(curve("deposited_area", true));
+            stored.curves.push_back(curve("stored_area", false));
+            stored.curves.push_back(curve("influx_area", true));
+            const auto* err = s.column("ledger_error");
+            const auto* in = s.column("influx_area");
+            for (std::size_t k = 0; k < err->size() && k < in->size(); ++k)
+                if (std::fabs((*err)[k]) > worst_error) worst_error = std::fabs((*err)[k]), influx_at_worst = (*in)[k];
+        }
         legend.push_back({i < labels.size() ? labels[i] : std::string(), c});
         legend.back().band = band.lo && band.hi ? kBandAlpha : 0.0;
     }
@@ -194,14 +212,18 @@ void plot_series(const std::vector<Series>& runs, const std::vector<std::string>
                      {"S: shortening / h0; h0: the incoming layer's thickness; H: wedge height above the undeformed surface",
                       "x_peak − x_S: where the highest surface column stands, from the S point",
                       "D (%): dilation, the deformed wedge's area against the area of the layer it accreted"});
+        if (ledger)
+            notes.push_back(fmt::format("areas: layer area (π R² / φ0 a disc); stored = influx − eroded + deposited, "
+                                        "the ledger closing to {:.2g} h0² at worst (influx {:.3g} h0² then)",
+                                        worst_error, influx_at_worst));
         for (const std::string& n : notes) legend.push_back({n, {}, false, false, 0.0, false, true});
     }
     legend = plot::wrap_notes(legend, o.width_px);
-    const plot::Figure f = plot::figure_layout(o.width_px, 2, 2, kAspect, !o.title.empty(), legend);
+    const plot::Figure f = plot::figure_layout(o.width_px, 2, ledger ? 3 : 2, kAspect, !o.title.empty(), legend);
     const auto canvas = make_canvas(format_of(path), f.width, f.height);
     plot::draw_title(*canvas, f, o.title);
-    const SeriesPanel* panels[] = {&taper, &height, &peak, &dil};
-    for (std::size_t k = 0; k < 4; ++k) {
+    const SeriesPanel* panels[] = {&taper, &height, &peak, &dil, &moved, &stored};
+    for (std::size_t k = 0; k < (ledger ? 6u : 4u); ++k) {
         Area a = f.panel(k);
         a.xr = xr;
         draw_panel(*canvas, f, *panels[k], a);

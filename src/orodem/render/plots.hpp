@@ -2,7 +2,9 @@
 // overlaid (SPEC §3; paper Figures 10, 11, 14, 15), drawn on a Canvas
 // (render/canvas.hpp, laid out by render/plot_util.hpp: fonts 1/60 of the
 // width). Four panels: taper angles α (solid) and β (dashed), H/h0, peak
-// deviation (x_peak − x_S)/h0 and dilation D (%), each against S; one
+// deviation (x_peak − x_S)/h0 and dilation D (%), each against S (runs
+// with [surface], whose series carry the ledger: two more, the eroded and
+// deposited area, and the stored area against the influx); one
 // colour per run and a legend under the panels naming the two line styles
 // and the runs, then notes defining every symbol. NaN values (no wedge yet)
 // leave gaps; α and β are masked while H < kTaperMinHeight h0 and drawn over

@@ -39,6 +39,8 @@ Frame read_frame(const SavedRun& run, std::size_t k) {
     f.file = vtu;
     if (const auto* g = d.find("shear_strain")) f.strain = *g;
     if (const auto* g = d.find("shear_strain_total")) f.strain_total = *g;
+    if (const auto* g = d.find("birth_S")) f.birth_S = *g;  // a run with [surface]: the particles' paths
+    if (const auto* g = d.find("max_burial_depth")) f.burial = *g;
     for (std::size_t i = 0; i < d.x.size(); ++i) {
         const std::size_t s = f.p.add(d.x[i], radius[i], 1.0);
         f.p.initial_depth[s] = depth[i];
@@ -83,6 +85,10 @@ std::vector<std::size_t> nearest_snapshots(const std::vector<Snapshot>& snaps, c
 namespace {
 
 [[noreturn]] void no_strain_error(const std::string& file, ColorBy color_by) {
+    if (color_by == ColorBy::deposition || color_by == ColorBy::burial)
+        throw ConfigError(fmt::format("'{}' holds no {} array: only a run with [surface] in its config has one; draw "
+                                      "this run with --color-by horizons, displacement or strain",
+                                      file, color_by == ColorBy::deposition ? "birth_S" : "max_burial_depth"));
     if (color_by == ColorBy::damage)
         throw ConfigError(fmt::format("'{}' holds no damage array: only a layered run (materials and [[layers]] in its "
                                       "config) has one; draw this run with --color-by horizons, displacement or strain",
@@ -96,6 +102,12 @@ namespace {
 
 Panel frame_panel(const Frame& f, ColorBy color_by, const std::vector<FaultLine>* faults) {
     Panel panel{&f.p, f.displacement.empty() ? nullptr : &f.displacement, f.S};
+    if (color_by == ColorBy::deposition || color_by == ColorBy::burial) {
+        const std::vector<double>& v = color_by == ColorBy::deposition ? f.birth_S : f.burial;
+        if (v.size() != f.p.size()) no_strain_error(f.file, color_by);
+        panel.path = &v;
+        return panel;
+    }
     if (!is_strain(color_by)) return panel;
     const bool total = color_by == ColorBy::strain_total;
     const std::vector<double>& g = total ? f.strain_total : f.strain;
@@ -107,6 +119,10 @@ Panel frame_panel(const Frame& f, ColorBy color_by, const std::vector<FaultLine>
 
 bool has_colour_data(const SavedRun& run, std::size_t k, ColorBy color_by) {
     if (color_by == ColorBy::damage) return read_frame(run, k).p.has_materials();
+    if (color_by == ColorBy::deposition || color_by == ColorBy::burial) {
+        const Frame f = read_frame(run, k);
+        return (color_by == ColorBy::deposition ? f.birth_S : f.burial).size() == f.p.size();
+    }
     if (!is_strain(color_by)) return true;
     const Frame f = read_frame(run, k);
     return (color_by == ColorBy::strain_total ? f.strain_total : f.strain).size() == f.p.size();

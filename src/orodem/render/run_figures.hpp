@@ -48,6 +48,8 @@ struct Frame {
     double S = 0;
     std::vector<double> strain;        // per slot, shear_strain (γ of the interval); empty: not in the snapshot
     std::vector<double> strain_total;  // per slot, shear_strain_total (γ since S = 0); empty: not in the snapshot
+    std::vector<double> birth_S;       // per slot, with [surface]: S of deposition (0 for the layer); empty: none
+    std::vector<double> burial;        // per slot, with [surface]: max_burial_depth [h0]; empty: none
     std::string file;                  // the snapshot's path (for messages)
 };
 /// Snapshot k of the run: rel_disp_abs / ((S_k − S_{k−1}) h0) as the displacement.

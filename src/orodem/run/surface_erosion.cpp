@@ -281,38 +281,54 @@ void SurfaceErosion::deposit(Simulation& sim, SurfaceState& st, double S, double
         next_[id] = head_[static_cast<std::size_t>(fc)];
         head_[static_cast<std::size_t>(fc)] = id;
     }
+    // One row a pass: from left to right, each particle clear of the one
+    // placed before it in this application (x_free), so that it rests on
+    // the surface as it was, never on a particle still to land; a column
+    // blocked keeps its request for the next application.
+    double x_free = -std::numeric_limits<double>::infinity();
     for (std::size_t c = 0; c < ncol; ++c) {
         double& r = st.sed_remainder[c];
         r += deposit_[c];
         // Whole particles, rounding the running request to the nearest one.
         while (st.deposited < reserve_.size() && r >= 0.5 * reserve_[st.deposited].area) {
             const Reserve& q = reserve_[st.deposited];
-            place(p, st, q, c, S, sim.params.m_inertia_min, x_then);
+            if (!place(p, st, q, c, S, sim.params.m_inertia_min, x_free, x_then)) break;
             r -= q.area;
             ++st.deposited;
         }
     }
 }
 
-void SurfaceErosion::place(ParticleStore& p, SurfaceState& st, const Reserve& q, std::size_t column, double S,
-                           double m_inertia_min, std::vector<Vec2>& x_then) {
+bool SurfaceErosion::place(ParticleStore& p, SurfaceState& st, const Reserve& q, std::size_t column, double S,
+                           double m_inertia_min, double& x_free, std::vector<Vec2>& x_then) {
     const ProfileParams& pp = w_.profile;
     const std::size_t ncol = head_.size();
     constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
     // Across the column by the golden-ratio sequence of the deposit count:
     // successive particles of a column spread over it.
     const double frac = std::fmod(0.5 + 0.6180339887498949 * static_cast<double>(st.deposited), 1.0);
-    const double x = pp.x_min + (static_cast<double>(column) + frac) * column_;
-    // The discs' offsets from their centroid (as parked: rigid).
+    // The discs' offsets from their centroid (as parked: rigid), and the
+    // particle's extent in x about its centroid.
     Vec2 centre{0.0, 0.0};
     for (std::uint32_t k = 0; k < q.count; ++k) centre = centre + p.x[p.slot_of_id[q.first + k]];
     centre = centre * (1.0 / static_cast<double>(q.count));
     offsets_.clear();
-    for (std::uint32_t k = 0; k < q.count; ++k) offsets_.push_back(p.x[p.slot_of_id[q.first + k]] - centre);
+    double left = 0.0, right = 0.0;
+    for (std::uint32_t k = 0; k < q.count; ++k) {
+        const std::size_t s = p.slot_of_id[q.first + k];
+        offsets_.push_back(p.x[s] - centre);
+        left = std::min(left, offsets_.back().x - p.radius[s]);
+        right = std::max(right, offsets_.back().x + p.radius[s]);
+    }
+    // Clear of the particle placed before it in this pass, within its column.
+    const double gap = 0.05 * r_min_;
+    const double x0 = pp.x_min + static_cast<double>(column) * column_;
+    const double x = std::max(x0 + frac * column_, x_free + gap - left);
+    if (!(x < x0 + column_)) return false;
+    x_free = x + right;
     // The lowest centroid height at which no disc comes within `gap` of a
     // present disc or of the base (y = 0): dropped from there, it lands
     // without an overlap.
-    const double gap = 0.05 * r_min_;
     const auto span = static_cast<std::size_t>(std::ceil((3.0 * r_max_ + 2.0 * r_max_ + gap) / column_));
     double y = 0.0;
     for (std::uint32_t k = 0; k < q.count; ++k) {
@@ -355,6 +371,7 @@ void SurfaceErosion::place(ParticleStore& p, SurfaceState& st, const Reserve& q,
             head_[static_cast<std::size_t>(fc)] = id;
         }
     }
+    return true;
 }
 
 SurfaceLedger SurfaceErosion::ledger(const ParticleStore& p, const SurfaceState& st, double S,

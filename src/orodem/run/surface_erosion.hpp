@@ -128,8 +128,10 @@ private:
                std::vector<Vec2>& x_then, LineFile& eroded);
     void deposit(Simulation& sim, SurfaceState& st, double S, double dS, const std::vector<double>& top,
                  double crest_x, std::vector<Vec2>& x_then);
-    void place(ParticleStore& p, SurfaceState& st, const Reserve& q, std::size_t column, double S,
-               double m_inertia_min, std::vector<Vec2>& x_then);
+    /// Places q in `column`, clear of the particle before it in this pass
+    /// (x_free: its right edge, then q's); false when the column is blocked.
+    bool place(ParticleStore& p, SurfaceState& st, const Reserve& q, std::size_t column, double S,
+               double m_inertia_min, double& x_free, std::vector<Vec2>& x_then);
 };
 
 }  // namespace orodem

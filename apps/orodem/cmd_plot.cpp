@@ -21,15 +21,15 @@ int cmd_plot(const std::vector<std::string>& run_dirs, const std::string& out, b
     if (run_dirs.size() == 1 && fs::exists(sweep_manifest_path(run_dirs[0]))) {
         const SweepManifest m = read_sweep_manifest(run_dirs[0]);
         std::vector<std::string> members;
-        for (const auto& v : m.values) {
-            const std::string d = sweep_member_dir(run_dirs[0], m, v);
+        for (const SweepMember& member : sweep_members(m)) {
+            const std::string d = sweep_member_dir(run_dirs[0], member);
             if (fs::exists(d + "/series.csv")) members.push_back(d);
             else fmt::print("plot: {} has no outputs yet; left out\n", d);
         }
         if (members.empty())
             throw ConfigError(fmt::format("{}: no member of the sweep has outputs yet (orodem status {})",
                                           run_dirs[0], run_dirs[0]));
-        const RunPlot p = plot_runs(members, out.empty() ? run_dirs[0] + "/plots.png" : out, seeds || is_seed_key(m.key));
+        const RunPlot p = plot_runs(members, out.empty() ? run_dirs[0] + "/plots.png" : out, seeds || varies_seed(m));
         for (const std::string& n : p.notes) fmt::print("plot: {}\n", n);
         fmt::print("plot: {}\n", p.path);
         return 0;

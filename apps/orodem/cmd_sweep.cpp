@@ -2,6 +2,7 @@
 // with --scheduler slurm run/sweep_slurm.hpp) and of a single run's resume,
 // the hidden `orodem sweep-member DIR` (one member: a parallel sweep's child,
 // a Slurm array task) and `orodem sweep-settle DIR` (the shared packings).
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -28,18 +29,20 @@ struct TerminalSweep final : SweepObserver {
     RunObserver& runs() override { return terminal; }
 };
 
-/// The config of the member key = value: the varied value applied as the last
-/// --set, named as the user wrote it (--vary) when a message is about it.
-Config sweep_member(const CommonArgs& a, const std::string& key, const std::string& value) {
+/// The config of a member (key = value for each varied key): the varied values
+/// applied as the last --sets, named as the user wrote them (--vary) when a
+/// message is about one.
+Config sweep_member(const CommonArgs& a, const SweepMember& member) {
     CommonArgs one = a;
-    one.sets.push_back(key + "=" + value);
+    for (const auto& [key, value] : member) one.sets.push_back(key + "=" + value);
     Config c;
     try {
         c = load(one);
     } catch (const ConfigError& e) {
-        const std::string msg = e.what(), as_set = "--set " + key + "=" + value;
-        if (msg.rfind(as_set, 0) == 0)
-            throw ConfigError(fmt::format("--vary {} (the value {}){}", key, value, msg.substr(as_set.size())));
+        const std::string msg = e.what();
+        for (const auto& [key, value] : member)
+            if (const std::string as_set = "--set " + key + "=" + value; msg.rfind(as_set, 0) == 0)
+                throw ConfigError(fmt::format("--vary {} (the value {}){}", key, value, msg.substr(as_set.size())));
         throw;
     }
     check_sweep_member(c);
@@ -48,17 +51,28 @@ Config sweep_member(const CommonArgs& a, const std::string& key, const std::stri
 
 }  // namespace
 
-int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg, int jobs,
+int cmd_sweep(const CommonArgs& a, const std::vector<std::string>& vary, const std::string& out_arg, int jobs,
               const SchedulerArgs& s) {
     const bool slurm = s.scheduler == "slurm";
     check_sweep_scheduler(slurm, s.slurm_given, a.threads, jobs, s.slurm);
-    const auto [key, values] = parse_vary(vary);
+    SweepManifest manifest{a.config, {}, {}, a.sets, {}};
+    for (const std::string& text : vary) {  // several --vary: the product grid, the first key varying slowest
+        auto [key, values] = parse_vary(text);
+        const bool repeated = key == manifest.key || std::any_of(manifest.more.begin(), manifest.more.end(),
+                                                                 [&](const SweepAxis& axis) { return axis.key == key; });
+        if (repeated)
+            throw ConfigError(fmt::format("--vary {}: the key is varied twice; give each key one --vary with all "
+                                          "its values",
+                                          key));
+        if (manifest.key.empty()) manifest.key = key, manifest.values = std::move(values);
+        else manifest.more.push_back(SweepAxis{key, std::move(values)});
+    }
     std::vector<Config> configs;  // every member validated before anything is written
-    for (const auto& v : values) configs.push_back(sweep_member(a, key, v));
+    for (const SweepMember& member : sweep_members(manifest)) configs.push_back(sweep_member(a, member));
     for (const Config& c : configs) check_run_time(c, check_runnable(c), a.force, "a run of the sweep");
     const std::string root = new_sweep_dir(out_arg, a.config);
     if (slurm) require_slurm_command("sbatch");  // without sbatch nothing is written
-    const Sweep sweep = create_sweep(root, SweepManifest{a.config, key, values, a.sets}, configs);
+    const Sweep sweep = create_sweep(root, manifest, configs);
     const DirLock lock = lock_dir(root, "the sweep folder");  // one sweep process per folder, to the end
     TerminalSweep terminal;
     if (slurm) return submit_sweep_slurm(sweep, s.slurm, true, terminal);
@@ -71,7 +85,7 @@ int cmd_resume(const std::string& dir, int threads, int jobs, const SchedulerArg
     if (std::filesystem::exists(sweep_manifest_path(dir))) {
         const DirLock lock = lock_dir(dir, "the sweep folder");  // one sweep process per folder, to the end
         const Sweep sweep = open_sweep(dir);
-        fmt::print("continuing the sweep in {} ({} = {} values)\n", dir, sweep.manifest.key, sweep.size());
+        fmt::print("continuing the sweep in {} ({})\n", dir, sweep_axes_text(sweep.manifest));
         TerminalSweep terminal;
         if (slurm) return submit_sweep_slurm(sweep, s.slurm, false, terminal);
         return run_sweep(sweep, LocalJobs{threads, jobs, ""}, terminal);

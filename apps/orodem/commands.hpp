@@ -33,7 +33,7 @@ struct SchedulerArgs {
 /// recorded in DIR/sweep.toml, then the overlay plots.
 /// jobs > 1: that many members at once, each in a child process.
 /// --scheduler slurm: the members submitted as one Slurm job array instead.
-int cmd_sweep(const CommonArgs& a, const std::string& vary, const std::string& out_arg, int jobs = 1,
+int cmd_sweep(const CommonArgs& a, const std::vector<std::string>& vary, const std::string& out_arg, int jobs = 1,
               const SchedulerArgs& s = {});
 /// orodem resume DIR (cmd_sweep.cpp): a sweep folder (with sweep.toml) continues its members in
 /// order (finished ones kept, interrupted ones resumed, the rest started;

@@ -132,11 +132,17 @@ int main(int argc, char** argv) {
     check->add_option("--set", check_args.sets, "Override a config value")->take_all();
 
     CommonArgs sweep_args;
-    std::string sweep_vary, sweep_out;
+    std::vector<std::string> sweep_vary;
+    std::string sweep_out;
     auto* sweep = app.add_subcommand("sweep", "One run per value of a config key, into DIR/<key>=<value>/, then the "
                                               "overlay plots; an interrupted sweep continues with orodem resume DIR");
     sweep->add_option("config", sweep_args.config, "TOML config file")->required();
-    sweep->add_option("--vary", sweep_vary, "key=v1,v2,..., e.g. wedge.mu_bp=0.1,0.2,0.3")->required();
+    sweep->add_option("--vary", sweep_vary, "key=v1,v2,..., e.g. wedge.mu_bp=0.1,0.2,0.3; given again for another "
+                                            "key, the runs are every combination (run.seed=1,2,3 as one of them: "
+                                            "each group's mean over its seeds in the plots)")
+        ->required()
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     sweep->add_option("--out", sweep_out, "Output directory (new or empty); default runs/<config name>-sweep");
     sweep->add_option("--set", sweep_args.sets, "Override a config value")->take_all();
     sweep->add_option("--threads", sweep_args.threads, "OpenMP threads (0 = all cores)")->check(CLI::Range(0, 1024));

@@ -2,6 +2,7 @@
 // layer settled once and reused, and the overlay plot at the end; an
 // interrupted sweep continued by `orodem resume DIR` ends as an uninterrupted one.
 #include <gtest/gtest.h>
+#include <fmt/format.h>
 
 #include "cli/checkpoint_util.hpp"
 #include "cli/cli_util.hpp"
@@ -100,6 +101,43 @@ TEST(Sweep, OverTheSeedsPlotsTheirMeanOverABand) {
     fs::remove_all(dir);
 }
 
+TEST(Sweep, SeveralVaryKeysRunTheProductGridAndPlotEachGroupOverItsSeeds) {
+    // --vary twice: one run per combination, the first key slowest, in <key>=<value>,<key>=<value>/; with
+    // run.seed among the keys plots.png draws each group of runs that differ only in their seeds as its mean.
+    const fs::path dir = tiny_dir();
+    ASSERT_FALSE(dir.empty());
+    const std::string sweep = std::string(ORODEM_EXE) + " sweep " + (dir / "tiny.toml").string() +
+                              " --threads 1 --set wedge.s_max=0.25 --vary wedge.mu_bp=0.1,0.5 --vary run.seed=1,2";
+    std::string out;
+    ASSERT_EQ(run(sweep + " --out " + (dir / "sw").string(), &out), 0) << out;
+    const char* order[] = {"wedge.mu_bp=0.1,run.seed=1", "wedge.mu_bp=0.1,run.seed=2", "wedge.mu_bp=0.5,run.seed=1",
+                           "wedge.mu_bp=0.5,run.seed=2"};
+    for (int k = 0; k < 4; ++k) {
+        const fs::path r = dir / "sw" / order[k];
+        ASSERT_TRUE(fs::exists(r / "series.csv")) << r;
+        const std::string cfg = slurp(r / "config.toml");
+        EXPECT_HAS(cfg, std::string("mu_bp = ") + (k < 2 ? "0.1" : "0.5"));
+        EXPECT_HAS(cfg, std::string("seed = ") + (k % 2 == 0 ? "1" : "2"));
+        EXPECT_HAS(out, fmt::format("(run {} of 4)", k + 1));
+    }
+    EXPECT_LT(out.find("sweep: wedge.mu_bp = 0.1, run.seed = 2 (run 2 of 4)"),
+              out.find("sweep: wedge.mu_bp = 0.5, run.seed = 1 (run 3 of 4)"))
+        << out;
+    EXPECT_HAS(out, "(2 seeds): wedge.mu_bp=0.1,run.seed=1, wedge.mu_bp=0.1,run.seed=2");
+    EXPECT_TRUE(fs::exists(dir / "sw" / "plots.png"));
+    // The sweep's folder: resume finds every member finished; measure names each member in a quoted first cell.
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " resume " + (dir / "sw").string(), &out), 0) << out;
+    EXPECT_HAS(out, "(wedge.mu_bp = 2 values x run.seed = 2 values)");
+    EXPECT_HAS(out, "sweep: wedge.mu_bp = 0.5, run.seed = 2: finished already, kept");
+    ASSERT_EQ(run(std::string(ORODEM_EXE) + " measure " + (dir / "sw").string() + " 2>/dev/null", &out), 0) << out;
+    EXPECT_HAS(out, "\n\"wedge.mu_bp=0.5,run.seed=2\",0.250");
+    // One key twice: refused before anything is written.
+    ASSERT_EQ(run(sweep + " --vary run.seed=3 --out " + (dir / "sw2").string(), &out), 2) << out;
+    EXPECT_HAS(out, "--vary run.seed: the key is varied twice");
+    EXPECT_FALSE(fs::exists(dir / "sw2"));
+    fs::remove_all(dir);
+}
+
 TEST(Sweep, InterruptedItContinuesWithResumeAndEndsAsAnUninterruptedSweep) {
     const fs::path dir = tiny_dir();
     ASSERT_FALSE(dir.empty());
@@ -147,14 +185,29 @@ TEST(Sweep, InterruptedItContinuesWithResumeAndEndsAsAnUninterruptedSweep) {
 TEST(Sweep, ItsManifestReadsBackAndABrokenOneIsRefusedByName) {
     const fs::path dir = tiny_dir();
     ASSERT_FALSE(dir.empty());
-    const orodem::SweepManifest m{"configs/a \"b\".toml", "wedge.mu_bp", {"0.1", "0.5"}, {"wedge.s_max=2"}};
+    const orodem::SweepManifest m{"configs/a \"b\".toml", "wedge.mu_bp", {"0.1", "0.5"}, {"wedge.s_max=2"}, {}};
     orodem::write_file_atomic(orodem::sweep_manifest_path(dir.string()), orodem::to_toml(m));
     const orodem::SweepManifest r = orodem::read_sweep_manifest(dir.string());
     EXPECT_EQ(r.config, m.config);
     EXPECT_EQ(r.key, m.key);
     EXPECT_EQ(r.values, m.values);
     EXPECT_EQ(r.sets, m.sets);
-    EXPECT_EQ(orodem::sweep_member_dir("S", r, "0.5"), "S/wedge.mu_bp=0.5");
+    EXPECT_EQ(orodem::sweep_member_dir("S", {{"wedge.mu_bp", "0.5"}}), "S/wedge.mu_bp=0.5");
+    EXPECT_TRUE(r.more.empty());
+    EXPECT_EQ(slurp(orodem::sweep_manifest_path(dir.string())).find("grid"), std::string::npos);  // one key: as before
+    // A product grid: the further keys in [[grid]], read back; the members every combination, the first key slowest.
+    const orodem::SweepManifest g{"a.toml", "wedge.mu_bp", {"0.1", "0.5"}, {}, {{"run.seed", {"1", "2", "3"}}}};
+    orodem::write_file_atomic(orodem::sweep_manifest_path(dir.string()), orodem::to_toml(g));
+    const orodem::SweepManifest gr = orodem::read_sweep_manifest(dir.string());
+    ASSERT_EQ(gr.more.size(), 1u);
+    EXPECT_EQ(gr.more[0].key, "run.seed");
+    EXPECT_EQ(gr.more[0].values, g.more[0].values);
+    const auto members = orodem::sweep_members(gr);
+    ASSERT_EQ(members.size(), 6u);
+    EXPECT_EQ(orodem::sweep_member_dir("S", members[1]), "S/wedge.mu_bp=0.1,run.seed=2");
+    EXPECT_EQ(orodem::sweep_member_dir("S", members[3]), "S/wedge.mu_bp=0.5,run.seed=1");
+    EXPECT_EQ(orodem::sweep_axes_text(gr), "wedge.mu_bp = 2 values x run.seed = 3 values");
+    EXPECT_TRUE(orodem::varies_seed(gr));
     orodem::write_file_atomic(orodem::sweep_manifest_path(dir.string()), "config = \"x.toml\"\nvary = 3\n");
     try {
         orodem::read_sweep_manifest(dir.string());

@@ -35,7 +35,7 @@ Sweep make_sweep(const TempFolder& t, const std::string& name, const std::string
     write_text(t / "base.toml", config);
     std::vector<Config> configs;
     for (const auto& v : values) configs.push_back(load_config(t / "base.toml", {{key, v}}));
-    return create_sweep(t / name, SweepManifest{t / "base.toml", key, values, {}}, configs);
+    return create_sweep(t / name, SweepManifest{t / "base.toml", key, values, {}, {}}, configs);
 }
 
 std::string settle_config(const fs::path& cache) {

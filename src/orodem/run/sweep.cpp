@@ -279,11 +279,15 @@ std::pair<std::string, std::vector<std::string>> parse_vary(const std::string& t
     return {text.substr(0, eq), values};
 }
 
-std::string Sweep::label(std::size_t k) const { return fmt::format("{} = {}", manifest.key, manifest.values[k]); }
+std::string Sweep::label(std::size_t k) const {
+    std::string text;
+    for (const auto& [key, value] : members[k]) text += fmt::format("{}{} = {}", text.empty() ? "" : ", ", key, value);
+    return text;
+}
 
 Sweep sweep_in(const std::string& root, const SweepManifest& m) {
-    Sweep s{root, m, {}};
-    for (const auto& v : m.values) s.dirs.push_back(sweep_member_dir(root, m, v));
+    Sweep s{root, m, {}, sweep_members(m)};
+    for (const SweepMember& member : s.members) s.dirs.push_back(sweep_member_dir(root, member));
     return s;
 }
 
@@ -419,7 +423,7 @@ int finish_sweep(const std::string& root, const SweepManifest& m, const std::vec
                  const std::vector<std::string>& failed_labels, bool all_wedges, SweepObserver& obs) {
     // A sweep over the seeds is an ensemble: its mean over the seeds' band.
     if (all_wedges && !finished_dirs.empty()) {
-        const RunPlot p = plot_runs(finished_dirs, root + "/plots.png", is_seed_key(m.key));
+        const RunPlot p = plot_runs(finished_dirs, root + "/plots.png", varies_seed(m));
         for (const std::string& note : p.notes) obs.say("plot: " + note);
         obs.say("plot: " + p.path);
     }
@@ -428,7 +432,7 @@ int finish_sweep(const std::string& root, const SweepManifest& m, const std::vec
     std::string list;
     for (const auto& f : failed_labels) list += (list.empty() ? "" : ", ") + f;
     obs.trouble(fmt::format("sweep: {} of {} runs went unstable ({}); the plots leave them out", failed_labels.size(),
-                            m.values.size(), list));
+                            sweep_members(m).size(), list));
     return static_cast<int>(ExitCode::unstable);
 }
 

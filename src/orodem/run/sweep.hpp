@@ -54,8 +54,9 @@ struct Sweep {
     std::string root;               // the folder, as given
     SweepManifest manifest;
     std::vector<std::string> dirs;  // member k's folder: root/<key>=<value>, in the manifest's order
+    std::vector<SweepMember> members;  // member k's (key, value) pairs (sweep_members)
     std::size_t size() const { return dirs.size(); }
-    /// "key = value" of member k.
+    /// "key = value" of member k ("key1 = value1, key2 = value2" in a grid).
     std::string label(std::size_t k) const;
 };
 /// The sweep of manifest m in root.

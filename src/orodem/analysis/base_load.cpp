@@ -19,7 +19,11 @@ double base_load_by_id(const Simulation& sim, const std::vector<std::size_t>& ba
         const std::uint8_t fl = p.flags[s];
         if (fl & kFlagRemoved) continue;
         double q = 0.0;  // [N]
-        if (fl & kFlagAsleep) {
+        if ((fl & kFlagAsleep) || !sim.in_awake_range(s)) {
+            // A sleeping zone, fixed discs included: each disc its own
+            // weight. A fixed disc there keeps the force of the last rebuild
+            // step, which holds the column above it, whose discs count
+            // themselves: counted twice before (base_load_ratio 1.1-1.2).
             q = p.mass[s] * g;
         } else {
             double base_y = 0.0;  // the base walls' force on the disc, y [N]

@@ -7,9 +7,12 @@
 //   - a fixed disc (Experiments 1, 2: the retroside discs glued to their
 //     base): what holds it, the opposite of the force on it from everything
 //     but the base walls, −(F − F_base)_y;
-//   - a sleeping disc: its weight m g (a sleeping zone moves rigidly on the
-//     flat base, its forces are not evaluated; each of its columns rests on
-//     the base with its own weight);
+//   - a disc in a sleeping zone (asleep, or fixed in a sleeping column:
+//     outside Simulation::in_awake_range): its weight m g (a sleeping zone
+//     moves rigidly on the base, its forces are not evaluated; each of its
+//     columns rests on the base with its own weight; a fixed disc's force
+//     there is that of the last rebuild step, which would count the column
+//     above it a second time);
 //   - a removed (eroded) disc: nothing.
 // In a quasi-static layer the loads add up to the layer's weight; their sum
 // over the discs against the discs' weight is reported (base_load_ratio).

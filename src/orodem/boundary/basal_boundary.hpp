@@ -92,21 +92,25 @@ protected:
     /// The per-step loop both laws share, over the discs with a candidate
     /// contact with the base (a few per cent of them; Simulation::wall_discs)
     /// in slots [c0, c1) (cleared by begin_forces), in parallel when asked and
-    /// there are many: for every disc with a finite mass, law(c, i, k, N) for
-    /// its contact k with the base, N the (smooth) base's normal force on it
-    /// [N], which the law records with set_slot when N > 0.
+    /// there are many: for every disc with a finite mass, law(c, i, k, N, û)
+    /// for its contact k with the base, N the (smooth) base's normal force on
+    /// it [N], which the law records with set_slot when N > 0, û the base's
+    /// unit direction there (the wall's; a base following the plate, its
+    /// segment under the disc: wall_tangent).
     template <class Law>
     void for_each_base_contact(Simulation& sim, std::size_t c0, std::size_t c1, bool parallel, Law&& law) {
         const ParticleStore& p = sim.particles;
         const WallContactStore& ws = sim.wall_contacts;
         const Wall& w = sim.walls[wall_];
-        const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
+        const Vec2 u_wall = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
+        const bool profiled = w.profile != nullptr;
         const std::vector<std::uint32_t>& discs = sim.wall_discs(wall_);
         const auto one = [&](std::size_t c) {
             const std::size_t i = discs[c];
             if (p.inv_mass[i] == 0.0) return;  // fixed and sleeping discs are left as they are
+            const Vec2 u = profiled ? wall_tangent(w, p.x[i]) : u_wall;
             for (std::uint32_t k = ws.begin[i]; k < ws.begin[i + 1]; ++k)
-                if (ws.wall[k] == wall_) law(c, i, k, ws.f[k].x * -u.y + ws.f[k].y * u.x);
+                if (ws.wall[k] == wall_) law(c, i, k, ws.f[k].x * -u.y + ws.f[k].y * u.x, u);
         };
         const long long cb = static_cast<long long>(c0), ce = static_cast<long long>(c1);
         if (!parallel || ce - cb < kParallelMin) {

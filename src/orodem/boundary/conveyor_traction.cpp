@@ -8,11 +8,9 @@ namespace orodem {
 
 void ConveyorTraction::apply_law(Simulation& sim, std::size_t c0, std::size_t c1, bool parallel) {
     ParticleStore& p = sim.particles;
-    const Wall& w = sim.walls[wall_];
-    const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
     const double gain_over_dt = gain_ / sim.params.dt;       // γ_b / m_i [1/s]
     const double drag_over_dt = drag_gain_ / sim.params.dt;  // γ_d / m_i [1/s]
-    for_each_base_contact(sim, c0, c1, parallel, [&](std::size_t c, std::size_t i, std::uint32_t, double normal) {
+    for_each_base_contact(sim, c0, c1, parallel, [&](std::size_t c, std::size_t i, std::uint32_t, double normal, Vec2 u) {
         if (normal <= 0.0) return;
         const double gamma_b = gain_over_dt * p.mass[i];
         const double slip = v_belt_ - dot(p.v[i], u);  // [m/s]

@@ -10,13 +10,11 @@ namespace orodem {
 void CoulombBase::apply_law(Simulation& sim, std::size_t c0, std::size_t c1, bool parallel) {
     ParticleStore& p = sim.particles;
     WallContactStore& ws = sim.wall_contacts;
-    const Wall& w = sim.walls[wall_];
-    const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
     const double k_s = sim.params.law.k_s;                         // [N/m]
     const double damp = 2.0 * kBaseDampingRatio * std::sqrt(k_s);  // γ_s / sqrt(m_i) [sqrt(kg)/s]
     const double dt = sim.params.dt;
     const double m_min = sim.params.m_inertia_min;  // the dashpot acts on the inertial mass [kg]
-    for_each_base_contact(sim, c0, c1, parallel, [&](std::size_t c, std::size_t i, std::uint32_t k, double normal) {
+    for_each_base_contact(sim, c0, c1, parallel, [&](std::size_t c, std::size_t i, std::uint32_t k, double normal, Vec2 u) {
         if (normal <= 0.0) {
             ws.xi[k] = {};  // not pressed on the base: no grip
             return;

@@ -25,6 +25,7 @@
 // stores have reached their size.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -134,6 +135,10 @@ public:
     const std::vector<std::uint32_t>& wall_discs(std::size_t w) const { return wall_discs_[w]; }
     /// Discs in the sleeping zones now (engine/sleep.cpp).
     std::size_t sleeping_count() const { return particles.size() - (awake_.disc_end - awake_.disc_begin); }
+    /// Whether slot s lies in the awake range, whose forces every step
+    /// computes; outside it (the sleeping zones' columns, their fixed discs
+    /// included) force[s] is left from the last rebuild step or zero.
+    bool in_awake_range(std::size_t s) const { return s >= awake_.disc_begin && s < awake_.disc_end; }
     /// The sleeping zones' last decision (at the last rebuild with sleeping on;
     /// a diagnostic, not saved in checkpoints): the x extent of the active
     /// discs and the bounds beyond which discs sleep [m]; ±inf where none.
@@ -149,6 +154,14 @@ public:
 
     /// Forces a pair rebuild at the next step (e.g. after particles were moved by hand).
     void request_rebuild() { force_rebuild_ = true; }
+    /// Counts a displacement d [m] made outside the step (discs or a base
+    /// moved by hand, e.g. the base following the plate: run/wedge_flexure)
+    /// against the skin: the next rebuild comes d sooner, as if every disc
+    /// had moved d more since the last one.
+    void add_external_displacement(double d) {
+        const double m = std::sqrt(max_disp2_) + d;
+        max_disp2_ = m * m;
+    }
 
     /// The private state that later steps depend on, for checkpoints
     /// (io/checkpoint.cpp): the pair builder's reference positions and

@@ -167,9 +167,14 @@ struct SurfaceConfig {
 enum class PlateKind { continuous, broken };
 inline constexpr Named<PlateKind> kPlateKinds[] = {{PlateKind::continuous, "continuous"}, {PlateKind::broken, "broken"}};
 constexpr const char* name_of(PlateKind v) { return name_in(kPlateKinds, v); }
+enum class FlexureCoupling { one_way, two_way };
+inline constexpr Named<FlexureCoupling> kFlexureCouplings[] = {{FlexureCoupling::one_way, "one-way"},
+                                                               {FlexureCoupling::two_way, "two-way"}};
+constexpr const char* name_of(FlexureCoupling v) { return name_in(kFlexureCouplings, v); }
 struct FlexureConfig {
     bool present = false;             // (not a key) the config has a [flexure] table
     PlateKind plate = PlateKind::continuous;  // continuous | broken (two plates, free ends at the S point)
+    FlexureCoupling coupling = FlexureCoupling::two_way;  // two-way: the base follows the plate; one-way: it stays flat
     double Te = 0.0;                  // elastic thickness T_e [m]; give Te or D
     double D = 0.0;                   // flexural rigidity D [N m] (per unit width); give D or Te
     double E = 70.0e9;                // Young's modulus E [Pa] (with Te)

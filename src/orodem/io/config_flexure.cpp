@@ -56,6 +56,7 @@ void read_flexure(Config& c, const toml::table& root, const std::string& file) {
     FlexureConfig& f = c.flexure;
     f.present = true;
     f.plate = r.choice("plate", f.plate, kPlateKinds);
+    f.coupling = r.choice("coupling", f.coupling, kFlexureCouplings);
     f.Te = r.number("Te", f.Te, non_negative());
     f.D = r.number("D", f.D, non_negative());
     f.E = r.number("E", f.E, positive());

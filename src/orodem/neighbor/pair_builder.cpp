@@ -22,12 +22,31 @@ Vec2 closest_point(const Wall& w, Vec2 q) {
 bool wall_contact_point(const Wall& w, Vec2 q, Vec2& cp) {
     const Vec2 d = w.b - w.a;
     double t = dot(q - w.a, d) / norm2(d);
+    if (w.profile) [[unlikely]] {
+        if (w.open_ends && (t < 0.0 || t > 1.0)) return false;
+        const BaseProfile& bp = *w.profile;
+        const std::size_t k = bp.segment(q.x);
+        const Vec2 p0{bp.node_x(k), bp.y[k]};
+        const Vec2 e{bp.dx, bp.y[k + 1] - bp.y[k]};
+        cp = p0 + (dot(q - p0, e) / norm2(e)) * e;  // on the line of the segment under q
+        return true;
+    }
     if (!w.infinite) {
         if (w.open_ends && (t < 0.0 || t > 1.0)) return false;
         t = std::clamp(t, 0.0, 1.0);
     }
     cp = w.a + t * d;
     return true;
+}
+
+Vec2 wall_tangent(const Wall& w, Vec2 q) {
+    if (w.profile) [[unlikely]] {
+        const BaseProfile& bp = *w.profile;
+        const std::size_t k = bp.segment(q.x);
+        const Vec2 e{bp.dx, bp.y[k + 1] - bp.y[k]};
+        return (1.0 / norm(e)) * e;
+    }
+    return (1.0 / norm(w.b - w.a)) * (w.b - w.a);
 }
 
 namespace {
@@ -280,6 +299,11 @@ void PairBuilder::build_wall_pairs(const ParticleStore& p, const std::vector<Wal
         const Wall& wk = walls[k];
         Vec2 lo{std::min(wk.a.x, wk.b.x) - grow, std::min(wk.a.y, wk.b.y) - grow};
         Vec2 hi{std::max(wk.a.x, wk.b.x) + grow, std::max(wk.a.y, wk.b.y) + grow};
+        if (wk.profile) {  // a base following the plate: its heights' range
+            const auto [ylo, yhi] = std::minmax_element(wk.profile->y.begin(), wk.profile->y.end());
+            lo.y = *ylo - grow;
+            hi.y = *yhi + grow;
+        }
         if (wk.infinite) {
             if (wk.a.y != wk.b.y) { lo.y = -inf; hi.y = inf; }  // not horizontal: unbounded in y
             if (wk.a.x != wk.b.x) { lo.x = -inf; hi.x = inf; }  // not vertical: unbounded in x
@@ -300,6 +324,7 @@ void PairBuilder::build_wall_pairs(const ParticleStore& p, const std::vector<Wal
                 const double t = dot(p.x[i] - wk.a, wk.b - wk.a) / len;  // [m] along the wall
                 if (t < -s.skin || t > len + s.skin) continue;
                 cp = closest_point(wk, p.x[i]);
+                if (wk.profile) cp.y = wk.profile->height(cp.x);  // the end of a base following the plate
             }
             const Vec2 d = p.x[i] - cp;
             const double cut = p.radius[i] + s.skin;

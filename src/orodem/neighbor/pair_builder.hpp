@@ -111,5 +111,8 @@ Vec2 closest_point(const Wall& w, Vec2 q);
 /// Sets cp to the closest point of w to q; false when w has open ends and q
 /// projects outside the segment (no contact possible).
 bool wall_contact_point(const Wall& w, Vec2 q, Vec2& cp);
+/// The unit tangent of w at q, along a→b: (b − a)/|b − a|, or a profiled
+/// base's segment under q.
+Vec2 wall_tangent(const Wall& w, Vec2 q);
 
 }  // namespace orodem

@@ -37,7 +37,9 @@ WedgeFlexure::WedgeFlexure(const Config& c, const WedgeSetup& w)
     g.extension = c.flexure.extension * alpha;
     plate_ = std::make_unique<FlexurePlate>(pp, g);
     x_retro_end_ = w.retro_length;
+    pro_length_ = w.pro_length;
     base_walls_ = {kWallProBase, kWallRetro};
+    two_way_ = c.flexure.coupling == FlexureCoupling::two_way;
     // The undeformed layer's weight per unit length, in id order (the same
     // sum in a resumed run; removed discs keep their mass column).
     const ParticleStore& p = w.sim.particles;
@@ -55,28 +57,153 @@ void WedgeFlexure::start(FlexureState& st) const {
     st.w.assign(plate_->size(), 0.0);
 }
 
-void WedgeFlexure::solve(const Simulation& sim, FlexureState& st) {
+void WedgeFlexure::make_profiles(const FlexureState& st, std::shared_ptr<const BaseProfile>& pro,
+                                 std::shared_ptr<const BaseProfile>& retro) const {
     const FlexurePlate& pl = *plate_;
+    const auto one = [&](std::size_t first, std::size_t last) {  // nodes [first, last] of one plate
+        auto bp = std::make_shared<BaseProfile>();
+        bp->x0 = pl.x(first);
+        bp->dx = pl.dx();
+        bp->inv_dx = 1.0 / pl.dx();
+        bp->y.resize(last - first + 1);
+        for (std::size_t k = first; k <= last; ++k) bp->y[k - first] = -(st.w[k] - w_layer_);
+        return bp;
+    };
     const std::size_t n = pl.size();
-    st.f.assign(n, 0.0);
-    st.w.assign(n, 0.0);
+    if (pl.broken()) {
+        pro = one(0, pl.break_node());
+        retro = one(pl.break_node() + 1, n - 1);
+    } else {
+        pro = retro = one(0, n - 1);
+    }
+}
+
+double WedgeFlexure::base_height(double x) const {
+    const BaseProfile* bp = x < 0.0 ? pro_.get() : retro_.get();  // the S point at x = 0 (the break)
+    return bp ? bp->height(x) : 0.0;
+}
+
+void WedgeFlexure::set_walls(Simulation& sim) const {
+    sim.walls[kWallProBase].profile = pro_;
+    sim.walls[kWallRetro].profile = retro_;
+    // The end walls (vertical, from their foot up) reach 2 h0 below the base.
+    for (const std::size_t e : {kWallProEnd, kWallRetroEnd}) {
+        Wall& wall = sim.walls[e];
+        wall.a.y = std::min(0.0, base_height(wall.a.x)) - 2.0 * h0_;
+    }
+}
+
+void WedgeFlexure::resume(Simulation& sim, const FlexureState& st) {
+    if (!on_ || !two_way_ || st.w.size() != plate_->size()) return;
+    make_profiles(st, pro_, retro_);
+    // Only the profiles: the end walls' feet are in the checkpoint as the
+    // last solve set them (set again here from the trailing wall's x now,
+    // they would differ by round-off).
+    sim.walls[kWallProBase].profile = pro_;
+    sim.walls[kWallRetro].profile = retro_;
+}
+
+void WedgeFlexure::measure_ratio(const Simulation& sim) {
     const double loads = base_load_by_id(sim, base_walls_, load_);
     const double weight = present_weight(sim);
     load_ratio_ = weight > 0.0 ? loads / weight : std::nan("");
+}
+
+void WedgeFlexure::node_forces(const Simulation& sim, bool weights, std::vector<double>& f) {
+    const FlexurePlate& pl = *plate_;
+    const std::size_t n = pl.size();
+    f.assign(n, 0.0);
     const ParticleStore& p = sim.particles;
+    if (weights) {
+        const double g = -sim.params.gravity.y;  // [m/s²]
+        load_.assign(p.size(), 0.0);
+        for (std::size_t id = 0; id < p.size(); ++id) {
+            const std::size_t s = p.slot_of_id[id];
+            if (!(p.flags[s] & kFlagRemoved)) load_[id] = p.mass[s] * g;
+        }
+    } else {
+        measure_ratio(sim);
+    }
     const double x_lo = pl.x(0), x_hi = pl.x(n - 1);
     for (std::size_t id = 0; id < p.size(); ++id) {
         if (load_[id] == 0.0) continue;
         const double x = std::clamp(p.x[p.slot_of_id[id]].x, x_lo, x_hi);
-        pl.add_line_load(x, load_[id], st.f.data());
+        pl.add_line_load(x, load_[id], f.data());
     }
     // Beyond the model: the undeformed layer, left of the trailing wall and
     // right of the retroside end wall.
     const double x_pro_end = sim.walls[kWallProEnd].a.x;
-    pl.add_pressure(x_lo - 1.0, x_pro_end, q_layer_, st.f.data());
-    pl.add_pressure(x_retro_end_, x_hi + 1.0, q_layer_, st.f.data());
+    pl.add_pressure(x_lo - 1.0, x_pro_end, q_layer_, f.data());
+    pl.add_pressure(x_retro_end_, x_hi + 1.0, q_layer_, f.data());
+}
+
+void WedgeFlexure::start(Simulation& sim, FlexureState& st) {
+    start(st);
+    if (!on_ || !two_way_) return;
+    // Two-way: the plate under the layer at rest (each disc's weight at its
+    // x), and every disc onto the bent base (the base was flat).
+    node_forces(sim, true, st.f);
+    plate_->solve_forces(st.f.data(), st.w.data());
+    st.solved_step = sim.step_count;
+    make_profiles(st, pro_, retro_);
+    ParticleStore& p = sim.particles;
+    for (std::size_t id = 0; id < p.size(); ++id) {
+        const std::size_t s = p.slot_of_id[id];
+        if (!(p.flags[s] & kFlagRemoved)) p.x[s].y += base_height(p.x[s].x);
+    }
+    set_walls(sim);
+    sim.request_rebuild();
+}
+
+void WedgeFlexure::solve(Simulation& sim, FlexureState& st) {
+    const std::uint64_t previous_step = st.solved_step;
+    const FlexurePlate& pl = *plate_;
+    const std::size_t n = pl.size();
+    if (two_way_) {
+        // The discs' weights at their x: the measured base forces answer
+        // the base's own motion through the contacts' stiffness, a feedback
+        // that a solve every N steps does not keep stable (docs/physics.md);
+        // they are still measured for base_load_ratio.
+        measure_ratio(sim);
+        node_forces(sim, true, st.f);
+    } else {
+        node_forces(sim, false, st.f);  // the load of this step
+    }
+    st.w.assign(n, 0.0);
     pl.solve_forces(st.f.data(), st.w.data());
     st.solved_step = sim.step_count;
+    if (!two_way_) return;
+
+    // The bases follow: the new profiles, the discs that do not move on
+    // their own carried with them (id order; serial).
+    std::shared_ptr<const BaseProfile> pro, retro;
+    make_profiles(st, pro, retro);
+    const auto height = [](const BaseProfile* bp, double x) { return bp ? bp->height(x) : 0.0; };
+    const double dt_since = static_cast<double>(sim.step_count - std::min(previous_step, sim.step_count)) * sim.params.dt;
+    ParticleStore& pp = sim.particles;
+    double moved = 0.0;  // the largest change of the base or of a carried disc's height [m]
+    for (std::size_t id = 0; id < pp.size(); ++id) {
+        const std::size_t s = pp.slot_of_id[id];
+        if (pp.inv_mass[s] != 0.0 || (pp.flags[s] & kFlagRemoved)) continue;
+        const Vec2 x = pp.x[s];
+        const Vec2 x_then = x - dt_since * pp.v[s];  // where it was at the previous solve [m]
+        const double dy = height(x.x < 0.0 ? pro.get() : retro.get(), x.x) -
+                          height(x_then.x < 0.0 ? pro_.get() : retro_.get(), x_then.x);
+        pp.x[s].y += dy;
+        moved = std::max(moved, std::fabs(dy));
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+        const double x = pl.x(k);
+        if (x < -pro_length_ - 2.0 * h0_ || x > x_retro_end_ + 2.0 * h0_) continue;  // the bases' reach
+        const bool pro_side = pl.broken() ? k <= pl.break_node() : x < 0.0;
+        const BaseProfile* now = pro_side ? pro.get() : retro.get();
+        const BaseProfile* then = pro_side ? pro_.get() : retro_.get();
+        moved = std::max(moved, std::fabs(height(now, x) - height(then, x)));
+    }
+    pro_ = std::move(pro);
+    retro_ = std::move(retro);
+    set_walls(sim);
+    sim.add_external_displacement(moved);
 }
 
 FlexureMeasures WedgeFlexure::measures(const FlexureState& st) const {

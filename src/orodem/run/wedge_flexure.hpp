@@ -19,8 +19,23 @@
 // So before any deformation the plate sinks uniformly by w_layer =
 // q_layer / (Δρ g), and the measures are taken against that level.
 //
-// One-way coupling: the base stays flat (y = 0); the deflection is computed
-// and written, not yet fed back to the base.
+// Two-way coupling (flexure.coupling = "two-way", the default): after each
+// solve the proside and retroside bases take the deflected shape, height
+// y_base(x) = −(w(x) − w_layer) [m] (the deflection against that of the
+// undeformed layer, so the incoming plate far from the wedge stays at
+// y = 0, where the layer was made; a uniform offset would move the whole
+// model rigidly and change nothing in it): a BaseProfile (state/contacts.hpp)
+// on the plate's nodes, piecewise linear, set at once at the solve (the
+// step between two solves is what the load's change over N steps makes of
+// w: small against the contacts' overlaps; FlexureRun tests bound the
+// kinetic energy after solves). A broken plate gives each base its own
+// plate's profile (a step at the S point). The discs that do not move on
+// their own, the sleeping and the fixed ones (inverse mass 0), move with
+// their base: y += y_new(x) − y_old(x − v Δt), v their constant velocity,
+// Δt the time since the previous solve. The end walls reach 2 h0 below the
+// base at their x. The largest change of the base counts against the skin
+// (Simulation::add_external_displacement). One-way: the base stays flat
+// (y = 0); the deflection is computed and written only.
 //
 // Everything here runs on one thread, in id and node order: deterministic
 // at any thread count. The state (the last solve) is FlexureState
@@ -69,8 +84,18 @@ public:
     bool due(std::uint64_t step) const { return on_ && step % interval_ == 0; }
     /// A run from step 0: the state sized, no solve yet.
     void start(FlexureState& st) const;
-    /// Measures the base load now and solves the plate under it into st.
-    void solve(const Simulation& sim, FlexureState& st);
+    /// The same; two-way, the plate solved under the discs' weights and
+    /// every disc moved onto the bent base (y += y_base(x)).
+    void start(Simulation& sim, FlexureState& st);
+    /// A resumed run (two-way): the bases take st's deflection again (the
+    /// walls' profiles are not in the checkpoint); nothing moves.
+    void resume(Simulation& sim, const FlexureState& st);
+    /// Measures the base load now and solves the plate under it into st;
+    /// two-way, the bases and the discs resting on them follow.
+    void solve(Simulation& sim, FlexureState& st);
+    /// The base's height under x [m] now (0 when flat: one-way, or no solve yet).
+    double base_height(double x) const;
+    bool two_way() const { return two_way_; }
     /// The measures of st's deflection (solve first).
     FlexureMeasures measures(const FlexureState& st) const;
     /// flexure.csv's lines of st at S: S, node, x [m], load [N/m], w [m].
@@ -83,12 +108,27 @@ private:
     std::uint64_t interval_ = 100;
     double h0_ = 1.0;                  // [m]
     double x_retro_end_ = 0.0;         // the retroside end wall [m]
+    double pro_length_ = 0.0;          // the trailing wall's start is at −pro_length [m]
     double q_layer_ = 0.0;             // weight of the undeformed layer per unit length [Pa]
     double w_layer_ = 0.0;             // q_layer / (Δρ g) [m]
     double load_ratio_ = 0.0;          // of the last solve [-]
     std::unique_ptr<FlexurePlate> plate_;
     std::vector<std::size_t> base_walls_;
     std::vector<double> load_;         // by id, scratch [N]
+    bool two_way_ = false;             // flexure.coupling = "two-way"
+    /// base_load_ratio now: Σ measured base loads / Σ weights (load_ by id).
+    void measure_ratio(const Simulation& sim);
+    /// The node forces [N/m] of the measured base load (weights: of each
+    /// disc's weight instead), with the undeformed layer beyond the model.
+    void node_forces(const Simulation& sim, bool weights, std::vector<double>& f);
+    // The bases' shapes now (two-way, after a solve; null: flat): the
+    // proside's, and the retroside's (the same one on a continuous plate).
+    std::shared_ptr<const BaseProfile> pro_, retro_;
+    /// The profiles of st's deflection (y = −(w − w_layer)).
+    void make_profiles(const FlexureState& st, std::shared_ptr<const BaseProfile>& pro,
+                       std::shared_ptr<const BaseProfile>& retro) const;
+    /// Puts pro_ and retro_ on the base walls and the end walls' feet below them.
+    void set_walls(Simulation& sim) const;
 };
 
 }  // namespace orodem

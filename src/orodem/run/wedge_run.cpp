@@ -123,7 +123,8 @@ WedgeRun::WedgeRun(const Config& c, WedgeSetup& w, const std::string& dir, RunLo
     if (flexure_.on()) {
         if (resumed_ && !st_.flexure.on)
             throw ConfigError("the checkpoint has no plate state ([flexure]); resume with the run's own config.toml");
-        if (!resumed_) flexure_.start(st_.flexure);
+        if (!resumed_) flexure_.start(sim_, st_.flexure);  // two-way: the layer onto the bent base
+        else flexure_.resume(sim_, st_.flexure);          // two-way: the bases' shape again
         flexure_file_ = LineFile(dir_ + "/flexure.csv");
         if (!resumed_) flexure_file_.line(flexure_profile_header());
     }

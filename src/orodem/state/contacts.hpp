@@ -9,7 +9,10 @@
 // are bit-identical at any thread count.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "orodem/core/vec2.hpp"
@@ -42,6 +45,33 @@ struct ContactStore {
     }
 };
 
+/// The shape of a base wall that follows the plate under the wedge
+/// ([flexure] with two-way coupling, run/wedge_flexure.hpp): its height y(x)
+/// [m] piecewise linear between nodes on a uniform grid, x_k = x0 + k dx
+/// (the plate's nodes; y = −w). The height under a disc is one segment
+/// lookup, O(1); beyond the grid the end segments go on straight.
+struct BaseProfile {
+    double x0 = 0.0;        // x of node 0 [m]
+    double dx = 1.0;        // node spacing [m]
+    double inv_dx = 1.0;    // 1 / dx [1/m]
+    std::vector<double> y;  // height at the nodes [m], at least two
+
+    /// The segment under x: its left node, in [0, size − 2].
+    std::size_t segment(double x) const {
+        const double t = std::floor((x - x0) * inv_dx);
+        const double last = static_cast<double>(y.size() - 2);
+        return t >= 0.0 ? static_cast<std::size_t>(std::min(t, last)) : 0;  // NaN: 0
+    }
+    /// x of node k [m].
+    double node_x(std::size_t k) const { return x0 + static_cast<double>(k) * dx; }
+    /// The height under x [m], linear on its segment.
+    double height(double x) const {
+        const std::size_t k = segment(x);
+        const double s = (x - node_x(k)) * inv_dx;
+        return y[k] + s * (y[k + 1] - y[k]);
+    }
+};
+
 /// A straight wall ([28]): a segment a→b, or the infinite line through them.
 /// It interacts with discs on either side using the disc-disc normal law with
 /// R_j = ∞; rough walls add the tangential spring with their own μ.
@@ -55,6 +85,12 @@ struct Wall {
     double mu = 0.0;          // Coulomb coefficient of a rough wall [-]
     bool open_ends = false;   // true: no end caps; only discs whose centre projects
                               // inside [a, b] touch it (bases that meet at the S point)
+    /// A base that follows the plate (two-way [flexure]): a horizontal wall
+    /// a→b whose height is the profile's, y(x), instead of a.y; a disc
+    /// touches the segment under its centre. Null: the straight wall. Not
+    /// saved in checkpoints (run/wedge_flexure.cpp sets it again from the
+    /// plate's saved deflection); immutable, shared by copies.
+    std::shared_ptr<const BaseProfile> profile = nullptr;
 };
 
 /// Disc-wall candidate contacts, CSR by particle slot; history keyed by

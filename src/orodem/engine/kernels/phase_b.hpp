@@ -33,7 +33,7 @@ namespace {
             continue;
         }
         const double dist = std::sqrt(r2);
-        const Vec2 u = (1.0 / norm(w.b - w.a)) * (w.b - w.a);
+        const Vec2 u = wall_tangent(w, d.x[i]);  // a straight wall's (b − a)/|b − a|
         const Vec2 v_wall = w.velocity + w.surface_speed * u;
         const PairKinematics kin{(1.0 / dist) * dx, ri - dist, d.v[i] - v_wall, ri * d.omega[i], std::max(d.mass[i], d.m_inertia_min)};
         Vec2 xi = d.wall_xi[k];

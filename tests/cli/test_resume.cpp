@@ -700,3 +700,17 @@ TEST_F(Resume, APowerLossThatCostRowsFallsBackToTheCheckpointThatFitsTheFiles) {
     EXPECT_HAS(slurp(run / "log.txt"), "an older checkpoint is used");
     expect_same_outputs(reference_, run);
 }
+
+TEST_F(Resume, AFinishedRunHasNothingToContinueAndIsLeftAsItWas) {
+    // orodem resume on a finished run says so and changes nothing (it used to restore the last checkpoint,
+    // append a resume piece to the log and draw the plots again).
+    const fs::path run = root_ / "finished";
+    fs::copy(reference_, run, fs::copy_options::recursive);
+    const std::string log = slurp(run / "log.txt"), plots = slurp(run / "figures" / "plots.png");
+    const Proc r = start({"resume", run.string(), "--threads", "1"}, root_ / "finished");
+    ASSERT_EQ(wait_for(r), 0) << slurp(r.err);
+    EXPECT_HAS(slurp(r.out) + slurp(r.err), "finished already at S = 0.500: nothing to continue");
+    EXPECT_EQ(slurp(run / "log.txt"), log);
+    EXPECT_EQ(slurp(run / "figures" / "plots.png"), plots);
+    expect_same_outputs(reference_, run);
+}

@@ -328,6 +328,16 @@ int resume_locked(const Config& c, const RunNumbers& n, const std::string& dir, 
                                       "again in a new directory: orodem run {}/config.toml --out NEW_DIR",
                                       dir, e.what(), dir));
     }
+    // A finished run whose last output row is on disk has nothing to continue (an extension, `how`, has):
+    // said, and nothing is written (its plots and log stay as they are). One that lost rows (a power loss)
+    // resumes to finish them.
+    if (const RunStatus done = run_state(dir); how.empty() && notes.empty() && done.state == RunState::finished &&
+                                               done.last && static_cast<double>(done.last->step) == done.last_step) {
+        obs.note(fmt::format("{} finished already at S = {:.3f}: nothing to continue; orodem resume {} --s-max S "
+                             "extends it to a larger S",
+                             dir, done.S, dir));
+        return 0;
+    }
     for (const auto& note : notes) obs.warning(note, false);
     // log.txt beyond the checkpoint: the rows and warnings that the resumed
     // run writes again, and the history of the pieces since: the previous

@@ -323,27 +323,40 @@ bool SurfaceErosion::place(ParticleStore& p, SurfaceState& st, const Reserve& q,
     // Clear of the particle placed before it in this pass, within its column.
     const double gap = 0.05 * r_min_;
     const double x0 = pp.x_min + static_cast<double>(column) * column_;
-    const double x = std::max(x0 + frac * column_, x_free + gap - left);
-    if (!(x < x0 + column_)) return false;
-    x_free = x + right;
-    // The lowest centroid height at which no disc comes within `gap` of a
-    // present disc or of the base (y = 0): dropped from there, it lands
+    const double x_lo = std::max(x0, x_free + gap - left), x_hi = x0 + column_;
+    if (!(x_lo < x_hi)) return false;
+    // The lowest centroid height at x at which no disc comes within `gap` of
+    // a present disc or of the base (y = 0): dropped from there, it lands
     // without an overlap.
     const auto span = static_cast<std::size_t>(std::ceil((3.0 * r_max_ + 2.0 * r_max_ + gap) / column_));
-    double y = 0.0;
-    for (std::uint32_t k = 0; k < q.count; ++k) {
-        const double rk = p.radius[p.slot_of_id[q.first + k]];
-        const Vec2 o = offsets_[k];
-        y = std::max(y, rk + gap - o.y);
-        const std::size_t c0 = column > span ? column - span : 0, c1 = std::min(ncol - 1, column + span);
-        for (std::size_t c = c0; c <= c1; ++c)
-            for (std::uint32_t j = head_[c]; j != kNone; j = next_[j]) {
-                const std::size_t sj = p.slot_of_id[j];
-                const double d = rk + p.radius[sj] + gap;
-                const double ddx = p.x[sj].x - (x + o.x);
-                if (std::abs(ddx) < d) y = std::max(y, p.x[sj].y + std::sqrt(d * d - ddx * ddx) - o.y);
-            }
+    const std::size_t c0 = column > span ? column - span : 0, c1 = std::min(ncol - 1, column + span);
+    auto drop_height = [&](double x) {
+        double y = 0.0;
+        for (std::uint32_t k = 0; k < q.count; ++k) {
+            const double rk = p.radius[p.slot_of_id[q.first + k]];
+            const Vec2 o = offsets_[k];
+            y = std::max(y, rk + gap - o.y);
+            for (std::size_t c = c0; c <= c1; ++c)
+                for (std::uint32_t j = head_[c]; j != kNone; j = next_[j]) {
+                    const std::size_t sj = p.slot_of_id[j];
+                    const double d = rk + p.radius[sj] + gap;
+                    const double ddx = p.x[sj].x - (x + o.x);
+                    if (std::abs(ddx) < d) y = std::max(y, p.x[sj].y + std::sqrt(d * d - ddx * ddx) - o.y);
+                }
+        }
+        return y;
+    };
+    // Of kPlaceTries places across what is left of the column (offset by
+    // frac), the lowest: a particle set in a hollow of the surface, not on a
+    // crest from which it would tumble.
+    constexpr int kPlaceTries = 8;
+    double x = 0.0, y = std::numeric_limits<double>::infinity();
+    for (int t = 0; t < kPlaceTries; ++t) {
+        const double xt = x_lo + (static_cast<double>(t) + frac) / kPlaceTries * (x_hi - x_lo);
+        const double yt = drop_height(xt);
+        if (yt < y) x = xt, y = yt;
     }
+    x_free = x + right;
     // Placed at (x, y), moving with its side's rigid motion (the belt's
     // left of the S point, rest right of it), in the reverse of a removal.
     const SleepParams& sp = w_.sim.params.sleep;

@@ -707,10 +707,15 @@ TEST_F(Resume, AFinishedRunHasNothingToContinueAndIsLeftAsItWas) {
     const fs::path run = root_ / "finished";
     fs::copy(reference_, run, fs::copy_options::recursive);
     const std::string log = slurp(run / "log.txt"), plots = slurp(run / "figures" / "plots.png");
+    // The temporary files of a writer killed while writing (SIGKILL during a checkpoint) are removed.
+    std::ofstream(run / "checkpoint" / "ckpt-000000000007.bin.tmp-4242-0") << "half";
+    std::ofstream(run / "snapshots" / "S0.500.vtu.tmp-4242-1") << "half";
     const Proc r = start({"resume", run.string(), "--threads", "1"}, root_ / "finished");
     ASSERT_EQ(wait_for(r), 0) << slurp(r.err);
     EXPECT_HAS(slurp(r.out) + slurp(r.err), "finished already at S = 0.500: nothing to continue");
     EXPECT_EQ(slurp(run / "log.txt"), log);
     EXPECT_EQ(slurp(run / "figures" / "plots.png"), plots);
+    EXPECT_FALSE(fs::exists(run / "checkpoint" / "ckpt-000000000007.bin.tmp-4242-0"));
+    EXPECT_FALSE(fs::exists(run / "snapshots" / "S0.500.vtu.tmp-4242-1"));
     expect_same_outputs(reference_, run);
 }

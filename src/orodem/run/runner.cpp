@@ -6,6 +6,7 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <regex>
 #include <sstream>
 #include <vector>
 
@@ -252,6 +253,19 @@ int start_run_in(const Config& c, const RunNumbers& n, const std::string& dir, R
 
 namespace {
 
+/// Removes the temporary files (<name>.tmp-<pid>-<n>, temporary_name) that a writer killed while writing left
+/// in dir and its sub-folders: with the directory locked, no live process is writing them.
+void remove_leftover_temporaries(const std::string& dir) {
+    static const std::regex temporary(R"(.+\.tmp-[0-9]+-[0-9]+)");
+    std::vector<fs::path> leftovers;
+    std::error_code ec;
+    for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec))
+        if (it->is_regular_file(ec) && std::regex_match(it->path().filename().string(), temporary))
+            leftovers.push_back(it->path());
+    for (const fs::path& p : leftovers) remove_path(p.string());
+}
+
 /// resume_run once the run directory is locked; `how` (when not empty) starts the resume line of log.txt.
 int resume_locked(const Config& c, const RunNumbers& n, const std::string& dir, RunObserver& obs,
                   const std::string& how = "") {
@@ -387,6 +401,7 @@ int resume_run(const Config& c, const RunNumbers& n, const std::string& dir, Run
     if (!fs::exists(dir + "/config.toml"))
         throw ConfigError(fmt::format("--resume --out {}: no config.toml there; give the directory of the run to continue", dir));
     const DirLock lock = lock_dir(dir, "the run directory");  // one writer (io/files.hpp); held to the end
+    remove_leftover_temporaries(dir);
     return resume_locked(c, n, dir, obs);
 }
 

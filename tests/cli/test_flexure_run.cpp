@@ -79,7 +79,18 @@ TEST_F(FlexureRun, AnIndependentSolverRecomputesTheDeflectionFromTheSavedLoadWit
         const auto& last = series.back();
         EXPECT_GT(std::stod(last[col("moat_depth_over_h0")]), 0.0);
         EXPECT_GT(std::stod(last[col("forebulge_pro_height_over_h0")]), 0.0);
-        EXPECT_NEAR(std::stod(last[col("base_load_ratio")]), 1.0, 0.05) << "the base carries the layer's weight";
+        // The base carries the layer's weight: the mean of the outputs from
+        // S = 0.2 (one output is one step's forces; a broken plate's
+        // two-way runs have bursts of motion, docs/physics.md).
+        double sum = 0.0;
+        int outputs = 0;
+        for (std::size_t k = 1; k < series.size(); ++k)
+            if (std::stod(series[k][col("S")]) > 0.15) {
+                sum += std::stod(series[k][col("base_load_ratio")]);
+                ++outputs;
+            }
+        ASSERT_EQ(outputs, 9);
+        EXPECT_NEAR(sum / outputs, 1.0, 0.05) << "the base carries the layer's weight";
     }
 }
 

@@ -137,6 +137,13 @@ void WedgeFlexure::node_forces(const Simulation& sim, bool weights, std::vector<
     pl.add_pressure(x_retro_end_, x_hi + 1.0, q_layer_, f.data());
 }
 
+void WedgeFlexure::clear_clusters(const ParticleStore& p) {
+    std::int32_t clusters = 0;
+    for (std::size_t s = 0; s < p.size(); ++s) clusters = std::max(clusters, p.cluster[s] + 1);
+    held_cluster_.assign(static_cast<std::size_t>(clusters), 0);
+    held_step_.assign(static_cast<std::size_t>(clusters), 0.0);
+}
+
 void WedgeFlexure::start(Simulation& sim, FlexureState& st) {
     start(st);
     if (!on_ || !two_way_) return;
@@ -146,10 +153,23 @@ void WedgeFlexure::start(Simulation& sim, FlexureState& st) {
     plate_->solve_forces(st.f.data(), st.w.data());
     st.solved_step = sim.step_count;
     make_profiles(st, pro_, retro_);
+    // A cluster moves whole, by the height under its first disc (id order):
+    // one across a broken plate's step at the S point stays whole.
     ParticleStore& p = sim.particles;
+    clear_clusters(p);
     for (std::size_t id = 0; id < p.size(); ++id) {
         const std::size_t s = p.slot_of_id[id];
-        if (!(p.flags[s] & kFlagRemoved)) p.x[s].y += base_height(p.x[s].x);
+        if (p.flags[s] & kFlagRemoved) continue;
+        double dy = base_height(p.x[s].x);
+        if (p.cluster[s] >= 0) {
+            const auto c = static_cast<std::size_t>(p.cluster[s]);
+            if (!held_cluster_[c]) {
+                held_cluster_[c] = 1;
+                held_step_[c] = dy;
+            }
+            dy = held_step_[c];
+        }
+        p.x[s].y += dy;
     }
     set_walls(sim);
     sim.request_rebuild();
@@ -182,13 +202,30 @@ void WedgeFlexure::solve(Simulation& sim, FlexureState& st) {
     const double dt_since = static_cast<double>(sim.step_count - std::min(previous_step, sim.step_count)) * sim.params.dt;
     ParticleStore& pp = sim.particles;
     double moved = 0.0;  // the largest change of the base or of a carried disc's height [m]
+    // A cluster with a fixed disc hangs on it by its bonds: all of it rides
+    // with the base, rigidly, by its first fixed disc's step (carrying the
+    // fixed disc alone jerked its partners at every solve, and the largest
+    // overlap grew above the flat base's: docs/physics.md; one step for the
+    // whole cluster keeps a cluster across a broken plate's step whole).
+    const auto step_at = [&](const Vec2 x, const Vec2 v) {  // the base's step under a disc moving at v [m]
+        const Vec2 x_then = x - dt_since * v;                 // where it was at the previous solve [m]
+        return height(x.x < 0.0 ? pro.get() : retro.get(), x.x) -
+               height(x_then.x < 0.0 ? pro_.get() : retro_.get(), x_then.x);
+    };
+    clear_clusters(pp);
     for (std::size_t id = 0; id < pp.size(); ++id) {
         const std::size_t s = pp.slot_of_id[id];
-        if (pp.inv_mass[s] != 0.0 || (pp.flags[s] & kFlagRemoved)) continue;
-        const Vec2 x = pp.x[s];
-        const Vec2 x_then = x - dt_since * pp.v[s];  // where it was at the previous solve [m]
-        const double dy = height(x.x < 0.0 ? pro.get() : retro.get(), x.x) -
-                          height(x_then.x < 0.0 ? pro_.get() : retro_.get(), x_then.x);
+        if (!(pp.flags[s] & kFlagFixed) || pp.cluster[s] < 0 || (pp.flags[s] & kFlagRemoved)) continue;
+        const auto c = static_cast<std::size_t>(pp.cluster[s]);
+        if (held_cluster_[c]) continue;
+        held_cluster_[c] = 1;
+        held_step_[c] = step_at(pp.x[s], pp.v[s]);
+    }
+    for (std::size_t id = 0; id < pp.size(); ++id) {
+        const std::size_t s = pp.slot_of_id[id];
+        const bool held = pp.cluster[s] >= 0 && held_cluster_[static_cast<std::size_t>(pp.cluster[s])] != 0;
+        if ((pp.inv_mass[s] != 0.0 && !held) || (pp.flags[s] & kFlagRemoved)) continue;
+        const double dy = held ? held_step_[static_cast<std::size_t>(pp.cluster[s])] : step_at(pp.x[s], pp.v[s]);
         pp.x[s].y += dy;
         moved = std::max(moved, std::fabs(dy));
     }

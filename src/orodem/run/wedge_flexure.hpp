@@ -30,9 +30,11 @@
 // w: small against the contacts' overlaps; FlexureRun tests bound the
 // kinetic energy after solves). A broken plate gives each base its own
 // plate's profile (a step at the S point). The discs that do not move on
-// their own, the sleeping and the fixed ones (inverse mass 0), move with
-// their base: y += y_new(x) − y_old(x − v Δt), v their constant velocity,
-// Δt the time since the previous solve. The end walls reach 2 h0 below the
+// their own, the sleeping and the fixed ones (inverse mass 0), and every
+// disc of a cluster with a fixed disc (it hangs on it by its bonds; the
+// whole cluster by its first fixed disc's step), move with their base:
+// y += y_new(x) − y_old(x − v Δt), v their velocity, Δt the time since the
+// previous solve. The end walls reach 2 h0 below the
 // base at their x. The largest change of the base counts against the skin
 // (Simulation::add_external_displacement). One-way: the base stays flat
 // (y = 0); the deflection is computed and written only.
@@ -124,6 +126,10 @@ private:
     // The bases' shapes now (two-way, after a solve; null: flat): the
     // proside's, and the retroside's (the same one on a continuous plate).
     std::shared_ptr<const BaseProfile> pro_, retro_;
+    std::vector<unsigned char> held_cluster_;  // two-way: 1 for a cluster with a fixed disc, scratch
+    std::vector<double> held_step_;            // two-way: its first fixed disc's step this solve, scratch [m]
+    /// held_cluster_ and held_step_ sized to p's clusters and cleared.
+    void clear_clusters(const ParticleStore& p);
     /// The profiles of st's deflection (y = −(w − w_layer)).
     void make_profiles(const FlexureState& st, std::shared_ptr<const BaseProfile>& pro,
                        std::shared_ptr<const BaseProfile>& retro) const;

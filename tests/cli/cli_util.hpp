@@ -177,6 +177,14 @@ inline std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
     return rows;
 }
 
+/// The index of column `name` in a CSV header (a test failure, and 0, when it has none).
+inline std::size_t csv_column(const std::vector<std::string>& header, const std::string& name) {
+    for (std::size_t k = 0; k < header.size(); ++k)
+        if (header[k] == name) return k;
+    ADD_FAILURE() << "no column " << name;
+    return 0;
+}
+
 /// A tiny exp1 (h0 = 6 m, S = 0.5, three outputs) whose packing cache lies in dir.
 inline void write_tiny_exp1(const fs::path& dir, const std::string& name = "tiny.toml") {
     write(dir / name, "[run]\nexperiment = \"exp1\"\n"

@@ -36,24 +36,6 @@ protected:
     }
 };
 
-std::vector<std::vector<std::string>> sandbox_csv(const std::string& text) {
-    std::vector<std::vector<std::string>> rows;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) {
-        std::vector<std::string> f;
-        std::istringstream l(line);
-        for (std::string x; std::getline(l, x, ',');) f.push_back(x);
-        rows.push_back(f);
-    }
-    return rows;
-}
-
-std::size_t sandbox_column(const std::vector<std::string>& header, const std::string& name) {
-    for (std::size_t k = 0; k < header.size(); ++k)
-        if (header[k] == name) return k;
-    ADD_FAILURE() << "no column " << name;
-    return 0;
-}
 
 }  // namespace
 
@@ -97,10 +79,10 @@ TEST_F(Sandbox, ATinySandboxRunsAndResumesToTheBytesOfAnUninterruptedRun) {
     const fs::path cfg = config("sandbox.toml");
     const Result a = orodem("run " + quote(cfg.string()) + " --out A --threads 1");
     ASSERT_EQ(a.status, 0) << a.err;
-    const auto rows = sandbox_csv(slurp(work_ / "A" / "series.csv"));
+    const auto rows = csv_rows(slurp(work_ / "A" / "series.csv"));
     ASSERT_EQ(rows.size(), 7u);  // header and S = 0, 0.1, ..., 0.5
     const auto& h = rows.front();
-    const std::size_t push = sandbox_column(h, "trailing_wall_push"), S = sandbox_column(h, "S");
+    const std::size_t push = csv_column(h, "trailing_wall_push"), S = csv_column(h, "S");
     EXPECT_NEAR(std::stod(rows.back()[S]), 0.5, 1e-3);  // whole steps
     EXPECT_GT(std::stod(rows.back()[push]), 0.0) << "the wall does not push the layer";
     EXPECT_TRUE(fs::exists(work_ / "A" / "run.pvd"));

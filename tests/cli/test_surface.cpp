@@ -65,32 +65,14 @@ protected:
     }
 };
 
-std::vector<std::vector<std::string>> csv(const std::string& text) {
-    std::vector<std::vector<std::string>> rows;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) {
-        std::vector<std::string> f;
-        std::istringstream l(line);
-        for (std::string x; std::getline(l, x, ',');) f.push_back(x);
-        rows.push_back(f);
-    }
-    return rows;
-}
-
-std::size_t column(const std::vector<std::string>& header, const std::string& name) {
-    for (std::size_t k = 0; k < header.size(); ++k)
-        if (header[k] == name) return k;
-    ADD_FAILURE() << "no column " << name;
-    return 0;
-}
 
 /// The ledger of every row of series.csv (rows[0] its header) closes:
 /// |influx − eroded + deposited − stored| ≤ 0.5% of the cumulative influx,
 /// recomputed and as ledger_error says.
 void expect_ledger_closes(const std::vector<std::vector<std::string>>& rows) {
     const auto& h = rows.front();
-    const std::size_t in = column(h, "influx_area"), er = column(h, "eroded_area"), st = column(h, "stored_area"),
-                      dep = column(h, "deposited_area"), err = column(h, "ledger_error");
+    const std::size_t in = csv_column(h, "influx_area"), er = csv_column(h, "eroded_area"), st = csv_column(h, "stored_area"),
+                      dep = csv_column(h, "deposited_area"), err = csv_column(h, "ledger_error");
     for (std::size_t k = 1; k < rows.size(); ++k) {
         const double influx = std::stod(rows[k][in]), eroded = std::stod(rows[k][er]), stored = std::stod(rows[k][st]),
                      deposited = std::stod(rows[k][dep]);
@@ -105,22 +87,22 @@ TEST_F(Surface, TheLedgerClosesAtEveryOutputAndErodedCsvListsEveryRemovedDisc) {
     const fs::path cfg = config("eroding.toml", kElevation);
     const Result r = orodem("run " + quote(cfg.string()) + " --out A --threads 2" + kLonger);
     ASSERT_EQ(r.status, 0) << r.err;
-    const auto rows = csv(slurp(work_ / "A" / "series.csv"));
+    const auto rows = csv_rows(slurp(work_ / "A" / "series.csv"));
     ASSERT_GE(rows.size(), 16u);
     const auto& h = rows.front();
-    const std::size_t in = column(h, "influx_area"), er = column(h, "eroded_area"), nd = column(h, "eroded_discs"),
-                      asked = column(h, "erosion_asked"), S = column(h, "S");
+    const std::size_t in = csv_column(h, "influx_area"), er = csv_column(h, "eroded_area"), nd = csv_column(h, "eroded_discs"),
+                      asked = csv_column(h, "erosion_asked"), S = csv_column(h, "S");
     expect_ledger_closes(rows);
     for (std::size_t k = 1; k < rows.size(); ++k) {
         EXPECT_NEAR(std::stod(rows[k][in]), std::stod(rows[k][S]), 1e-5) << k;
-        EXPECT_EQ(std::stod(rows[k][column(h, "deposited_area")]), 0.0) << k;
+        EXPECT_EQ(std::stod(rows[k][csv_column(h, "deposited_area")]), 0.0) << k;
     }
     const auto& last = rows.back();
     const double eroded = std::stod(last[er]);
     EXPECT_GT(eroded, 0.0) << "nothing was eroded";
     // The taken area follows the asked one within the columns' remainders.
     EXPECT_NEAR(eroded, std::stod(last[asked]), 0.5 * std::stod(last[asked]));
-    const auto e = csv(slurp(work_ / "A" / "eroded.csv"));
+    const auto e = csv_rows(slurp(work_ / "A" / "eroded.csv"));
     ASSERT_FALSE(e.empty());
     EXPECT_EQ(e.front().size(), 6u);
     EXPECT_EQ(e.size() - 1, static_cast<std::size_t>(std::stoul(last[nd])));
@@ -133,7 +115,7 @@ TEST_F(Surface, TheLedgerClosesAtEveryOutputAndErodedCsvListsEveryRemovedDisc) {
 TEST_F(Surface, AnInterruptedErodingRunResumesToTheBytesOfAnUninterruptedOne) {
     // The checkpoint at S = 1.2 comes after the first particles were removed.
     expect_resumed_run_same(kElevation, "1", [](const fs::path& run) {
-        ASSERT_GT(csv(slurp(run / "eroded.csv")).size(), 1u) << "interrupted before any erosion";
+        ASSERT_GT(csv_rows(slurp(run / "eroded.csv")).size(), 1u) << "interrupted before any erosion";
     });
 }
 
@@ -141,15 +123,15 @@ TEST_F(Surface, WithSedimentationTheLedgerClosesAtEveryOutputAndTheSnapshotsCarr
     const fs::path cfg = config("sedimenting.toml", kSediment);
     const Result r = orodem("run " + quote(cfg.string()) + " --out A --threads 2" + kLonger);
     ASSERT_EQ(r.status, 0) << r.err;
-    const auto rows = csv(slurp(work_ / "A" / "series.csv"));
+    const auto rows = csv_rows(slurp(work_ / "A" / "series.csv"));
     ASSERT_GE(rows.size(), 16u);
     const auto& h = rows.front();
-    const std::size_t er = column(h, "eroded_area"), dep = column(h, "deposited_area"),
-                      nd = column(h, "deposited_discs"), asked = column(h, "deposit_asked");
+    const std::size_t er = csv_column(h, "eroded_area"), dep = csv_column(h, "deposited_area"),
+                      nd = csv_column(h, "deposited_discs"), asked = csv_column(h, "deposit_asked");
     expect_ledger_closes(rows);
     // Deposits land without an overlap spike: no pair beyond run.warn_overlap_ratio (0.1 R) at any output.
     for (std::size_t k = 1; k < rows.size(); ++k)
-        EXPECT_LT(std::stod(rows[k][column(h, "max_overlap_ratio")]), 0.1) << "row " << k;
+        EXPECT_LT(std::stod(rows[k][csv_column(h, "max_overlap_ratio")]), 0.1) << "row " << k;
     const auto& last = rows.back();
     const double deposited = std::stod(last[dep]), eroded = std::stod(last[er]);
     EXPECT_GT(deposited, 0.0) << "nothing was deposited";
@@ -165,7 +147,7 @@ TEST_F(Surface, WithSedimentationTheLedgerClosesAtEveryOutputAndTheSnapshotsCarr
     EXPECT_LT(snap.find("Name=\"rel_disp_abs\""), snap.find("Name=\"birth_S\""));
     // eroded.csv: the birth S of each removed disc (0 for the layer's, the
     // deposition S for a deposit's) never after its erosion S.
-    const auto e = csv(slurp(work_ / "A" / "eroded.csv"));
+    const auto e = csv_rows(slurp(work_ / "A" / "eroded.csv"));
     ASSERT_GT(e.size(), 1u);
     for (std::size_t k = 1; k < e.size(); ++k) EXPECT_LE(std::stod(e[k][5]), std::stod(e[k][2])) << "row " << k;
     // The pictures: growth strata by their deposition S, the largest burial depth.
@@ -180,9 +162,9 @@ TEST_F(Surface, AnInterruptedSedimentingRunResumesToTheBytesOfAnUninterruptedOne
     // Both forelands filled: the checkpoint at S = 1.2 comes after particles
     // were removed and deposited; the uninterrupted run at 2 threads.
     expect_resumed_run_same(kSediment, "2", [](const fs::path& run) {
-        const auto rows = csv(slurp(run / "series.csv"));
-        ASSERT_GT(std::stod(rows.back()[column(rows.front(), "deposited_area")]), 0.0) << "interrupted before any deposit";
-        ASSERT_GT(csv(slurp(run / "eroded.csv")).size(), 1u) << "interrupted before any erosion";
+        const auto rows = csv_rows(slurp(run / "series.csv"));
+        ASSERT_GT(std::stod(rows.back()[csv_column(rows.front(), "deposited_area")]), 0.0) << "interrupted before any deposit";
+        ASSERT_GT(csv_rows(slurp(run / "eroded.csv")).size(), 1u) << "interrupted before any erosion";
     });
 }
 
@@ -234,7 +216,7 @@ TEST_F(Surface, WithoutTheTableNothingIsResolvedAndTheColumnsAreTheOldOnes) {
     EXPECT_FALSE(fs::exists(work_ / "strata.png"));
     EXPECT_NE(slurp(work_ / "B" / "config.toml").find("[surface]"), std::string::npos);
     // law = "none": the same run, with the ledger's columns after the others.
-    const auto a = csv(slurp(work_ / "A" / "series.csv")), b = csv(slurp(work_ / "B" / "series.csv"));
+    const auto a = csv_rows(slurp(work_ / "A" / "series.csv")), b = csv_rows(slurp(work_ / "B" / "series.csv"));
     ASSERT_EQ(a.size(), b.size());
     for (std::size_t k = 0; k < a.size(); ++k) {
         ASSERT_EQ(b[k].size(), a[k].size() + 10) << k;
